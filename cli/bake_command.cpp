@@ -1,0 +1,189 @@
+#include "bake_command.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "arguments.h"
+#include "grain/grain_params.h"
+#include "renderer/bake_specs.h"
+#include "renderer/grid_bake.h"
+#include "renderer/grid_writers.h"
+#include "skeleton/skeleton_file.h"
+#include "skeleton/skeleton_index.h"
+#include "util/input_error.h"
+
+namespace nenrin {
+
+namespace {
+
+// Resolution caps: beyond these a typo (an extra zero) would take hours or all memory.
+constexpr int kMaxSliceSide = 16384;
+constexpr long long kMaxSlicePixels = 1LL << 26;
+constexpr int kMaxVolumeSide = 512;
+
+struct CommonOptions {
+    std::string skeleton;
+    std::string grain;
+    std::string output;
+    int threads = 0;
+    bool quiet = false;
+};
+
+void addCommon(CLI::App* cmd, CommonOptions& o) {
+    cmd->add_option("--skeleton", o.skeleton, "Skeleton JSON file (docs/skeleton-format.md)")
+        ->required();
+    cmd->add_option("--grain", o.grain,
+                    "Grain parameter JSON file (docs/grain-format.md); defaults if omitted");
+    cmd->add_option("-o,--output", o.output, "Output file")->required();
+    cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
+        ->check(CLI::Range(0, 1024))
+        ->default_val(0);
+    cmd->add_flag("-q,--quiet", o.quiet, "No progress bar");
+}
+
+/// Everything a bake needs, loaded and validated before any output is touched.
+struct LoadedWood {
+    Skeleton skeleton;
+    GrainParams grain;
+    std::unique_ptr<SkeletonIndex> index;
+    std::unique_ptr<GrowthField> field;
+    std::unique_ptr<WoodShader> shader;
+};
+
+std::unique_ptr<LoadedWood> loadWood(const CommonOptions& o) {
+    auto w = std::make_unique<LoadedWood>();
+    w->skeleton = loadSkeletonFile(o.skeleton);
+    w->grain = o.grain.empty() ? GrainParams{} : loadGrainFile(o.grain);
+    w->index = std::make_unique<SkeletonIndex>(w->skeleton);
+    w->field = std::make_unique<GrowthField>(*w->index, w->grain);
+    w->shader = std::make_unique<WoodShader>(*w->field);
+    return w;
+}
+
+void addMetadata(BakedGrid& grid, const CommonOptions& o, const LoadedWood& w) {
+    grid.metadata["version"] = NENRIN_VERSION;
+    grid.metadata["skeleton"] = o.skeleton;
+    grid.metadata["grain"] = grainToJson(w.grain).dump();
+    grid.metadata["channels"] =
+        "R,G,B: scene-linear albedo; A: 1; T: growth time (years); knot: branch share (0..1)";
+}
+
+void report(const BakedGrid& grid, const std::vector<std::string>& files, double seconds) {
+    float tMin = INFINITY, tMax = -INFINITY, knotMax = 0;
+    for (size_t i = 0; i < grid.sampleCount(); ++i) {
+        tMin = std::min(tMin, grid.data[i * BakedGrid::kChannels + 4]);
+        tMax = std::max(tMax, grid.data[i * BakedGrid::kChannels + 4]);
+        knotMax = std::max(knotMax, grid.data[i * BakedGrid::kChannels + 5]);
+    }
+    for (const auto& f : files) fmt::print("wrote {}\n", f);
+    fmt::print(
+        "{} samples in {:.2f} s ({:.2f} M samples/s); T {:.2f}..{:.2f} years; knot max "
+        "{:.2f}\n",
+        grid.sampleCount(), seconds, grid.sampleCount() / seconds * 1e-6, tMin, tMax, knotMax);
+}
+
+double since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+void addBakeCommands(CLI::App& app) {
+    CLI::App* bake =
+        app.add_subcommand("bake", "Bake the wood of a skeleton into images or volumes");
+    bake->require_subcommand(1);
+
+    // --- slice ---
+    static CommonOptions sliceCommon;
+    static std::string plane = "cross", size = "0.4x0.4m", res = "512x512";
+    static double at = 1.0, bottom = 0.0;
+    CLI::App* slice = bake->add_subcommand(
+        "slice",
+        "A planar cut through the log as an EXR image (R,G,B,A,T,knot).\n"
+        "  cross:      horizontal cut at height --at, centred on the pith (an end-grain cookie)\n"
+        "  radial:     vertical cut through plane y = pith + --at (quarter-sawn near 0)\n"
+        "  tangential: vertical cut through plane x = pith + --at (a flat-sawn board face)\n"
+        "Boards span --size WIDTHxHEIGHT with the lower edge at --bottom.");
+    addCommon(slice, sliceCommon);
+    slice->add_option("--plane", plane, "cross | radial | tangential")
+        ->check(CLI::IsMember({"cross", "radial", "tangential"}))
+        ->default_val("cross");
+    slice->add_option("--at", at, "Height of a cross cut, or board offset from the pith (m)")
+        ->default_val(1.0);
+    slice->add_option("--size", size, "Image extent WIDTHxHEIGHT in metres, e.g. 0.4x0.4m")
+        ->default_val("0.4x0.4m");
+    slice->add_option("--res", res, "Image resolution WIDTHxHEIGHT in pixels")
+        ->default_val("512x512");
+    slice->add_option("--bottom", bottom, "Boards: height of the image's lower edge (m)")
+        ->default_val(0.0);
+    slice->callback([] {
+        auto t0 = std::chrono::steady_clock::now();
+        SliceSpec spec;
+        spec.plane = parseSlicePlane(plane);
+        if (!std::isfinite(at))
+            throw InputError("command line", "--at", "expected a finite number");
+        if (!std::isfinite(bottom))
+            throw InputError("command line", "--bottom", "expected a finite number");
+        spec.at = at;
+        spec.bottom = bottom;
+        std::tie(spec.width, spec.height) = parseSizeMetres(size, "--size");
+        std::tie(spec.resX, spec.resY) = parseResolution(res, "--res", kMaxSliceSide);
+        if (static_cast<long long>(spec.resX) * spec.resY > kMaxSlicePixels)
+            throw InputError(
+                "command line", "--res",
+                fmt::format("{} is over the cap of {} M pixels", res, kMaxSlicePixels >> 20));
+        auto wood = loadWood(sliceCommon);
+        BakedGrid grid = sliceGrid(wood->skeleton, spec);
+        addMetadata(grid, sliceCommon, *wood);
+        grid.metadata["slice"] =
+            fmt::format("plane={} at={} size={}x{}m bottom={}", slicePlaneName(spec.plane), spec.at,
+                        spec.width, spec.height, spec.bottom);
+        bakeGrid(*wood->shader, grid, {sliceCommon.threads, sliceCommon.quiet, "Baking slice"});
+        auto files = writeExr(grid, sliceCommon.output);
+        report(grid, files, since(t0));
+    });
+
+    // --- volume ---
+    static CommonOptions volumeCommon;
+    static std::string box;
+    static int volumeRes = 64;
+    CLI::App* volume = bake->add_subcommand(
+        "volume",
+        "A 3D grid of the wood over a box, as EXR (z-slice atlas), OpenVDB (one grid per\n"
+        "channel) or POV-Ray df3 (16-bit R, G, B, knot files plus a .inc pigment).\n"
+        "Samples sit on the box's lattice, faces included.");
+    addCommon(volume, volumeCommon);
+    volume->add_option("--box", box, "Tree-space box x0,y0,z0,x1,y1,z1 in metres")->required();
+    volume->add_option("--res", volumeRes, "Samples along the box's longest edge (2..512)")
+        ->default_val(64);
+    volume->callback([] {
+        auto t0 = std::chrono::steady_clock::now();
+        auto b = parseNumberList(box, "--box", 6);
+        VolumeSpec spec;
+        spec.lower = {b[0], b[1], b[2]};
+        spec.upper = {b[3], b[4], b[5]};
+        for (int i = 0; i < 3; ++i)
+            if (!(spec.upper[i] > spec.lower[i]))
+                throw InputError("command line", "--box",
+                                 fmt::format("zero-size or inverted box: expected x1 > x0, y1 > "
+                                             "y0 and z1 > z0, found \"{}\"",
+                                             box));
+        if (volumeRes < 2 || volumeRes > kMaxVolumeSide)
+            throw InputError(
+                "command line", "--res",
+                fmt::format("expected 2 to {} samples, found {}", kMaxVolumeSide, volumeRes));
+        spec.resolution = volumeRes;
+        auto wood = loadWood(volumeCommon);
+        BakedGrid grid = volumeGrid(spec);
+        addMetadata(grid, volumeCommon, *wood);
+        grid.metadata["box"] = box;
+        bakeGrid(*wood->shader, grid, {volumeCommon.threads, volumeCommon.quiet, "Baking volume"});
+        auto files = writeVolume(grid, volumeCommon.output);
+        report(grid, files, since(t0));
+    });
+}
+
+}  // namespace nenrin

@@ -1,0 +1,31 @@
+// nenrin: solid-texture wood from Momoi's growth-time field. Thin main: subcommands live in
+// their own files; user errors arrive here as InputError and leave as one line + exit code 1.
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "bake_command.h"
+#include "util/input_error.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"nenrin " NENRIN_VERSION
+                 " - wood that grew: growth-time rings around knots, baked and rendered"};
+    app.set_version_flag("--version", NENRIN_VERSION);
+    app.require_subcommand(1);
+    nenrin::addBakeCommands(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const nenrin::InputError& e) {
+        fmt::print(stderr, "nenrin: error: {}\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "nenrin: error: {}\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,133 @@
+#include "grain/grain_params.h"
+
+#include <fmt/format.h>
+
+#include "util/json_reader.h"
+
+namespace nenrin {
+
+namespace {
+
+Rgb readRgb(JsonReader& r, const std::string& key, const Rgb& fallback, double lo) {
+    Vec3 v = r.vec3(key, {fallback.r, fallback.g, fallback.b});
+    for (int i = 0; i < 3; ++i)
+        if (!(v[i] >= lo && v[i] <= 1))
+            throw r.error(key,
+                          fmt::format("expected colour components in [{}, 1], found {}", lo, v[i]));
+    return {v.x, v.y, v.z};
+}
+
+nlohmann::json rgbJson(const Rgb& c) { return {c.r, c.g, c.b}; }
+
+}  // namespace
+
+GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
+    GrainParams g;
+    JsonReader root(json, file);
+    root.string("description", "");
+    root.choice("format", "nenrin-grain", {"nenrin-grain"});
+    g.radialSpeed = root.positive("radial_speed", g.radialSpeed);
+    g.fellingTime = root.nonNegative("felling_time", g.fellingTime);
+    if (auto j = root.object("junction")) {
+        g.junction.p = j->inRange("p", g.junction.p, 0.5, 64);
+        g.junction.reach = j->inRange("reach", g.junction.reach, 1.5, 100);
+        j->finish();
+    }
+    if (auto d = root.object("direction")) {
+        Vec3 sun = d->vec3("sun_ray", g.direction.sunRay);
+        if (length(sun) < 1e-12) throw d->error("sun_ray", "expected a non-zero vector");
+        g.direction.sunRay = normalize(sun);
+        g.direction.strength = d->inRange("strength", g.direction.strength, 0, 0.95);
+        d->finish();
+    }
+    if (auto a = root.object("age")) {
+        g.age.delta = a->inRange("delta", g.age.delta, 0.2, 5);
+        a->finish();
+    }
+    if (auto t = root.object("taper")) {
+        g.taper.nu = t->inRange("nu", g.taper.nu, 0, 10);
+        g.taper.omega = t->inRange("omega", g.taper.omega, 1e-6, 1);
+        t->finish();
+    }
+    if (auto s = root.object("sway")) {
+        g.sway.amplitude = s->inRange("amplitude", g.sway.amplitude, 0, 1);
+        g.sway.wavelength = s->positive("wavelength", g.sway.wavelength);
+        g.sway.radialJitter = s->inRange("radial_jitter", g.sway.radialJitter, 0, 0.9);
+        g.sway.seed = static_cast<uint64_t>(s->integer("seed", 1, 0, 1LL << 53));
+        s->finish();
+    }
+    if (auto c = root.object("colour")) {
+        ColourParams& cp = g.colour;
+        cp.earlyWood = readRgb(*c, "early_wood", cp.earlyWood, 0);
+        cp.lateWood = readRgb(*c, "late_wood", cp.lateWood, 0);
+        cp.lateWoodExponent = c->inRange("late_wood_exponent", cp.lateWoodExponent, 0.1, 100);
+        if (auto h = c->object("heartwood")) {
+            cp.heartwood = h->boolean("enabled", cp.heartwood);
+            cp.heartwoodStart = h->nonNegative("start", cp.heartwoodStart);
+            cp.heartwoodEnd = h->nonNegative("end", cp.heartwoodEnd);
+            if (cp.heartwoodEnd < cp.heartwoodStart)
+                throw h->error("end", fmt::format("expected end >= start ({}), found {}",
+                                                  cp.heartwoodStart, cp.heartwoodEnd));
+            cp.heartwoodOffset = readRgb(*h, "heartwood_offset", cp.heartwoodOffset, -1);
+            cp.sapwoodOffset = readRgb(*h, "sapwood_offset", cp.sapwoodOffset, -1);
+            h->finish();
+        }
+        if (auto m = c->object("micro")) {
+            cp.microCellSize = m->positive("cell_size", cp.microCellSize);
+            cp.microAmplitude = m->inRange("amplitude", cp.microAmplitude, 0, 1);
+            cp.microSeed = static_cast<uint64_t>(m->integer("seed", 7, 0, 1LL << 53));
+            m->finish();
+        }
+        if (auto k = c->object("knots")) {
+            cp.knotDarkening = k->inRange("darkening", cp.knotDarkening, 0, 1);
+            cp.deadKnotDarkening = k->inRange("dead_darkening", cp.deadKnotDarkening, 0, 1);
+            cp.deadKnotRim = k->inRange("dead_rim", cp.deadKnotRim, 0, 1);
+            k->finish();
+        }
+        c->finish();
+    }
+    root.finish();
+    return g;
+}
+
+GrainParams loadGrainFile(const std::string& path) { return parseGrain(parseJsonFile(path), path); }
+
+nlohmann::json grainToJson(const GrainParams& g) {
+    const ColourParams& c = g.colour;
+    return {
+        {"format", "nenrin-grain"},
+        {"radial_speed", g.radialSpeed},
+        {"felling_time", g.fellingTime},
+        {"junction", {{"p", g.junction.p}, {"reach", g.junction.reach}}},
+        {"direction",
+         {{"sun_ray", {g.direction.sunRay.x, g.direction.sunRay.y, g.direction.sunRay.z}},
+          {"strength", g.direction.strength}}},
+        {"age", {{"delta", g.age.delta}}},
+        {"taper", {{"nu", g.taper.nu}, {"omega", g.taper.omega}}},
+        {"sway",
+         {{"amplitude", g.sway.amplitude},
+          {"wavelength", g.sway.wavelength},
+          {"radial_jitter", g.sway.radialJitter},
+          {"seed", g.sway.seed}}},
+        {"colour",
+         {{"early_wood", rgbJson(c.earlyWood)},
+          {"late_wood", rgbJson(c.lateWood)},
+          {"late_wood_exponent", c.lateWoodExponent},
+          {"heartwood",
+           {{"enabled", c.heartwood},
+            {"start", c.heartwoodStart},
+            {"end", c.heartwoodEnd},
+            {"heartwood_offset", rgbJson(c.heartwoodOffset)},
+            {"sapwood_offset", rgbJson(c.sapwoodOffset)}}},
+          {"micro",
+           {{"cell_size", c.microCellSize},
+            {"amplitude", c.microAmplitude},
+            {"seed", c.microSeed}}},
+          {"knots",
+           {{"darkening", c.knotDarkening},
+            {"dead_darkening", c.deadKnotDarkening},
+            {"dead_rim", c.deadKnotRim}}}}},
+    };
+}
+
+}  // namespace nenrin

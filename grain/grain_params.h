@@ -1,0 +1,83 @@
+#pragma once
+/// Parameters of the growth-time field and the wood colour (Momoi 1994, models.md section 1),
+/// with their defaults and units. Loaded from a "grain" JSON file, documented key by key in
+/// docs/grain-format.md. Every default here is the value a grain file gets when it omits a key.
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "grain/rgb.h"
+#include "util/vec3.h"
+
+namespace nenrin {
+
+/// Trunk-branch junction blend (eq. 5, our reconstruction) and its cut-off.
+struct JunctionParams {
+    double p = 2;      ///< smooth-min exponent: 2 is the paper's form, large values approach min()
+    double reach = 4;  ///< a branch path stops counting (smoothly) once its time exceeds
+                       ///< reach x the trunk time: bounds the work per point
+};
+
+/// Eq. 7: the sun side grows faster.
+struct DirectionParams {
+    Vec3 sunRay{0, 1, 0};  ///< direction the sunlight travels (from the sun); unit length
+    double strength = 0;   ///< eps of eq. 7, in [0, 1)
+};
+
+/// Eq. 8: Tb = (Db / S)^delta.
+struct AgeParams {
+    double delta = 1;
+};
+
+/// Eq. 9: S' = (1 + nu omega^Ta) S.
+struct TaperParams {
+    double nu = 0;
+    double omega = 0.9;
+};
+
+/// Section 4.5: sway of the sample point and a direction-dependent factor on Db.
+struct SwayParams {
+    double amplitude = 0;     ///< m: displacement of the sample point
+    double wavelength = 0.6;  ///< m: of the displacement sines
+    double radialJitter = 0;  ///< relative: Db is multiplied by 1 + radialJitter * h, |h| <= 1
+    uint64_t seed = 1;
+};
+
+/// Section 3 and 4.6: colours and micro-structure.
+struct ColourParams {
+    Rgb earlyWood{0.74, 0.50, 0.28};  ///< Cl: scene-linear
+    Rgb lateWood{0.42, 0.20, 0.07};   ///< Cd: scene-linear
+    double lateWoodExponent = 6;      ///< n of eq. 6: larger = narrower late-wood band
+    bool heartwood = true;
+    double heartwoodStart = 12;  ///< Th1, years: heartwood below
+    double heartwoodEnd = 16;    ///< Th2, years: sapwood above
+    Rgb heartwoodOffset{-0.06, -0.06, -0.03};
+    Rgb sapwoodOffset{0.03, 0.03, 0.03};
+    double microCellSize = 0.0008;  ///< m: one cell of the 16 x 16 micro-structure table
+    double microAmplitude = 0.04;   ///< relative brightness change
+    uint64_t microSeed = 7;
+    double knotDarkening = 0.25;      ///< relative darkening inside living knots
+    double deadKnotDarkening = 0.45;  ///< relative darkening inside dead knots
+    double deadKnotRim = 0.5;         ///< relative darkening of the bark rim around dead knots
+};
+
+struct GrainParams {
+    double radialSpeed = 0.004;  ///< Sb, m/year: the trunk's ring width
+    /// Years: the tree was felled then, so points with T > fellingTime are outside the log
+    /// (bakes write A = 0 and black there). 0 = never felled: wood everywhere.
+    double fellingTime = 0;
+    JunctionParams junction;
+    DirectionParams direction;
+    AgeParams age;
+    TaperParams taper;
+    SwayParams sway;
+    ColourParams colour;
+};
+
+GrainParams loadGrainFile(const std::string& path);
+GrainParams parseGrain(const nlohmann::json& json, const std::string& file);
+/// The parameters as JSON (same keys as the file): stored as metadata in outputs.
+nlohmann::json grainToJson(const GrainParams& params);
+
+}  // namespace nenrin

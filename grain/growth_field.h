@@ -1,0 +1,85 @@
+#pragma once
+/// Momoi's growth-time field: T(P) = time at which the bark surface first reaches P.
+///
+/// For a point P (after sway), the trunk path gives T1 (nearest trunk point N, Ta from the node
+/// birth times, Tb from the distance with direction, taper, age and jitter terms; polyline
+/// joints blended by eq. 4). Every branch chain near enough gives its own path time T2 the same
+/// way (gamma Sb, dieback eq. 10). Trunk and branch paths are joined by the smooth minimum of
+/// eq. 5 (our reconstruction) taken over all branch paths at once:
+///   T = (T1^-p + sum_c w_c (T_c / sin alpha_c)^-p)^(-1/p),
+/// alpha_c measured from the plane through the branch's start perpendicular to it, w_c the
+/// reach cut-off weight. With one branch this is exactly eq. 5.
+///
+/// Points come in batches (tiles of a bake): one set of candidate segments is gathered from the
+/// index for the whole batch and every point is then evaluated against it. The answer for a
+/// point never depends on the batch it came in: candidate lists are supersets, sorted by id,
+/// filtered per point, so results are bitwise identical for any tiling and thread count.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "grain/grain_params.h"
+#include "skeleton/skeleton_index.h"
+
+namespace nenrin {
+
+struct GrowthSample {
+    double T = 0;                 ///< growth time, years, all terms applied
+    double trunkTime = 0;         ///< T1: the trunk path's time
+    double Ta = 0, Tb = 0;        ///< elongation and thickening parts of the trunk path
+    Vec3 axisPoint;               ///< N: nearest trunk point
+    Vec3 axisDirection;           ///< trunk tangent at N
+    double knot = 0;              ///< share of branch paths in the junction blend, 0..1
+    double deadKnot = 0;          ///< share of branches that had died before the trunk reached P
+                                  ///< (encased dead knots), 0..knot
+    int32_t knotChain = -1;       ///< branch chain with the largest share, -1 if none
+    double knotAxisDistance = 0;  ///< distance to that chain's axis (m), 0 without one
+};
+
+/// Reusable per-thread buffers for batch evaluation.
+struct GrowthScratch {
+    std::vector<Vec3> points;
+    std::vector<uint32_t> trunkCandidates;
+    std::vector<uint32_t> branchCandidates;
+    struct ChainTerm {
+        uint32_t chain;
+        double time, sinAlpha, distance;
+        bool dead;
+    };
+    std::vector<ChainTerm> terms;
+};
+
+class GrowthField {
+public:
+    /// The index (and its skeleton) must outlive the field.
+    GrowthField(const SkeletonIndex& index, const GrainParams& params);
+
+    const GrainParams& params() const { return params_; }
+    const Skeleton& skeleton() const { return index_->skeleton(); }
+
+    GrowthSample evaluate(const Vec3& p) const;
+    /// Evaluates a batch; spatially coherent batches (a tile) are much faster than scattered ones.
+    void evaluateBatch(std::span<const Vec3> points, std::span<GrowthSample> out,
+                       GrowthScratch& scratch) const;
+
+    /// One path: the time through segment `segment` (with the eq. 4 joint blend of its chain
+    /// neighbours). Exposed for tests.
+    struct PathTime {
+        double T, Ta, Tb;
+        Vec3 axisPoint, axisDirection;
+        double distance;
+        bool dead;  ///< the path time is past the segment's dieback time
+    };
+    PathTime chainPathTime(uint32_t segment, const Vec3& p) const;
+
+private:
+    PathTime segmentPathTime(uint32_t segment, const Vec3& p, double t) const;
+    double branchSearchRadius(double trunkTime) const;
+
+    const SkeletonIndex* index_;
+    GrainParams params_;
+    double maxSpeed_;  ///< upper bound of the radial speed factor (taper x direction)
+};
+
+}  // namespace nenrin

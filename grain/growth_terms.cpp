@@ -1,0 +1,79 @@
+#include "grain/growth_terms.h"
+
+#include <array>
+#include <numbers>
+
+#include "util/hash.h"
+
+namespace nenrin {
+
+double lateWoodFraction(double growthTime, double exponent) {
+    double u = growthTime - std::floor(growthTime);
+    double s = std::sin(0.5 * std::numbers::pi * u);
+    return std::pow(s, exponent);
+}
+
+Vec3 swayDisplacement(const Vec3& p, const SwayParams& sway) {
+    if (sway.amplitude == 0) return {};
+    // Three sines per axis with seeded directions and phases; each axis' sum is normalised to
+    // keep |displacement| <= amplitude per axis.
+    const double k = 2 * std::numbers::pi / sway.wavelength;
+    Vec3 out;
+    for (int axis = 0; axis < 3; ++axis) {
+        double sum = 0;
+        for (int i = 0; i < 3; ++i) {
+            uint64_t key = static_cast<uint64_t>(axis * 3 + i);
+            double theta = 2 * std::numbers::pi * uniform01(sway.seed, key, 1);
+            double phi = std::acos(2 * uniform01(sway.seed, key, 2) - 1);
+            double scale = (0.6 + 0.8 * uniform01(sway.seed, key, 3)) / (i + 1);
+            Vec3 dir{std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta),
+                     std::cos(phi)};
+            double phase = 2 * std::numbers::pi * uniform01(sway.seed, key, 4);
+            sum += std::sin(k * scale * (i + 1) * dot(dir, p) + phase) / (i + 1);
+        }
+        (axis == 0 ? out.x : axis == 1 ? out.y : out.z) = sum / (1.0 + 0.5 + 1.0 / 3.0);
+    }
+    return out * sway.amplitude;
+}
+
+double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elongationYears,
+                        const SwayParams& sway) {
+    if (sway.radialJitter == 0) return 1;
+    // Azimuth about the axis, measured from world X projected onto the normal plane (world Y
+    // for axes close to X), so it varies smoothly along a smoothly bending axis.
+    Vec3 ref = std::abs(axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    Vec3 u = normalize(ref - axis * dot(ref, axis));
+    Vec3 v = cross(axis, u);
+    double az = std::atan2(dot(outwardNormal, v), dot(outwardNormal, u));
+    double h = 0, norm = 0;
+    for (int k = 1; k <= 3; ++k) {
+        double phase = 2 * std::numbers::pi * uniform01(sway.seed, 100 + k, 0);
+        double drift = 0.4 * (uniform01(sway.seed, 100 + k, 1) - 0.5);  // radians per year
+        h += std::sin(k * az + phase + drift * elongationYears) / k;
+        norm += 1.0 / k;
+    }
+    return 1 + sway.radialJitter * h / norm;
+}
+
+double microStructure(const Vec3& p, double cellSize, uint64_t seed) {
+    constexpr int kSize = 16;
+    auto cell = [&](double c) {
+        long long i = static_cast<long long>(std::floor(c / cellSize));
+        return static_cast<uint64_t>(((i % kSize) + kSize) % kSize);
+    };
+    uint64_t ix = cell(p.x), iy = cell(p.y);
+    return 2 * uniform01(seed, ix * kSize + iy) - 1;
+}
+
+double knotEmphasis(double knotShare, double deadShare, const ColourParams& c) {
+    double live = std::max(knotShare - deadShare, 0.0);
+    double inside = c.knotDarkening * smoothstep(0.45, 0.75, live) +
+                    c.deadKnotDarkening * smoothstep(0.45, 0.75, deadShare);
+    // The bark of a dead branch is encased by the trunk: a thin dark line where the dead
+    // branch and the trunk meet, i.e. where the dead share crosses one half.
+    double x = (deadShare - 0.5) / 0.12;
+    double rim = c.deadKnotRim * std::exp(-x * x) * smoothstep(0.05, 0.3, deadShare);
+    return std::clamp(inside + rim, 0.0, 0.95);
+}
+
+}  // namespace nenrin

@@ -1,0 +1,110 @@
+#pragma once
+/// Every term of Momoi's growth-time model (models.md section 1) as a small pure function, so
+/// each can be read against the paper and unit-tested alone. GrowthField composes them.
+/// Units: metres, years.
+
+#include <algorithm>
+#include <cmath>
+
+#include "grain/grain_params.h"
+#include "util/vec3.h"
+
+namespace nenrin {
+
+/// Eq. 2: time for the growth tip to travel path length Da at elongation speed Sa.
+/// (Skeletons carry node birth times, which reduce to this for a constant Sa.)
+inline double elongationTime(double pathLength, double elongationSpeed) {
+    return pathLength / elongationSpeed;
+}
+
+/// Eq. 3 / 3': time for the bark to thicken out over distance Db at radial speed S
+/// (S = Sb on the trunk path, gamma Sb on a branch path).
+inline double thickeningTime(double distance, double radialSpeed) { return distance / radialSpeed; }
+
+/// Eq. 7: radial speed factor 1 - eps cos(beta); beta is the angle between the sun-ray vector
+/// (pointing away from the sun) and the outward bark normal. The sun side (normal facing the
+/// sun, cos beta = -1) grows by 1 + eps.
+inline double directionFactor(const Vec3& outwardNormal, const Vec3& sunRay, double eps) {
+    return 1.0 - eps * dot(sunRay, outwardNormal);
+}
+
+/// Eq. 8: ageing, Tb = tb^delta with tb in years: rings narrow outward when delta > 1.
+inline double ageWarp(double thickeningYears, double delta) {
+    return delta == 1.0 ? thickeningYears : std::pow(thickeningYears, delta);
+}
+
+/// Eq. 9: taper, radial speed factor 1 + nu omega^Ta: the trunk thickens faster near its base.
+inline double taperFactor(double elongationYears, double nu, double omega) {
+    return nu == 0.0 ? 1.0 : 1.0 + nu * std::pow(omega, std::max(elongationYears, 0.0));
+}
+
+/// Eq. 10: dieback. After the branch dies at Tlim it stops thickening: its path time grows
+/// steeply, T' = T (T / Tlim)^eps, so the trunk overgrows it and the knot stops widening.
+inline double dieback(double t, double deathTime, double eps) {
+    return t > deathTime ? t * std::pow(t / deathTime, eps) : t;
+}
+
+/// Eq. 4 for a pair: T = (T1 M1 + T2 M2) / (M1 + M2), where M1 and M2 are the distances to the
+/// planes through the joint perpendicular to the two segments (region D of Fig. 3).
+inline double jointBlend(double t1, double m1, double t2, double m2) {
+    double w = m1 + m2;
+    return w > 0 ? (t1 * m1 + t2 * m2) / w : 0.5 * (t1 + t2);
+}
+
+/// Eq. 5 (our reconstruction, models.md 1.2) for one trunk and one branch path:
+///   T = T1                                   if sin(alpha) <= 0 (behind the branch's plane F)
+///   T = (T1^-p + (T2 / sin alpha)^-p)^(-1/p) otherwise.
+/// p = 2 is T1 T2 / sqrt(T2^2 + (T1 sin alpha)^2), the paper's form; p -> infinity the
+/// first-arrival minimum. GrowthField applies the same smooth minimum over all branch paths
+/// at once (junctionSmoothMin), which reduces to this with one branch.
+inline double junctionBlend(double trunkTime, double branchTime, double sinAlpha, double p) {
+    if (sinAlpha <= 0) return trunkTime;
+    double m = std::min(trunkTime, branchTime / sinAlpha);
+    if (m <= 0) return 0;
+    double s = std::pow(m / trunkTime, p) + std::pow(m * sinAlpha / branchTime, p);
+    return m * std::pow(s, -1.0 / p);
+}
+
+/// Smooth step from 0 at e0 to 1 at e1.
+inline double smoothstep(double e0, double e1, double x) {
+    double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3 - 2 * t);
+}
+
+/// Cut-off weight of a branch path in the junction blend: 1 while its time is below half of
+/// reach x the trunk time, fading smoothly to 0 at reach x the trunk time. Keeps the blend
+/// continuous while letting far branches be skipped (see GrowthField).
+inline double junctionReachWeight(double branchTime, double trunkTime, double reach) {
+    return 1.0 - smoothstep(0.5, 1.0, branchTime / (reach * std::max(trunkTime, 1e-9)));
+}
+
+/// Eq. 6: late-wood fraction E = sin^n((pi/2) u), u = frac(T): 0 in early wood at the start of
+/// the season, rising to 1 in late wood at the ring's end.
+double lateWoodFraction(double growthTime, double exponent);
+
+/// Heartwood weight (3.2): 1 for T < Th1 (heartwood), 0 for T > Th2 (sapwood), linear between.
+inline double heartwoodWeight(double growthTime, double start, double end) {
+    if (growthTime <= start) return 1;
+    if (growthTime >= end) return 0;
+    return (end - growthTime) / (end - start);
+}
+
+/// Section 4.5, main method: sample-point displacement, a seeded sum of sines of the coordinates.
+Vec3 swayDisplacement(const Vec3& p, const SwayParams& sway);
+
+/// Section 4.5, second method: a factor 1 + radialJitter h(azimuth, Ta), |h| <= 1, on Db. The
+/// azimuth is that of the outward normal about the skeleton axis, so rings become gently lobed
+/// and the lobes drift along the trunk.
+double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elongationYears,
+                        const SwayParams& sway);
+
+/// Section 4.6: micro-structure. A 16 x 16 table of seeded brightness offsets in [-1, 1], tiled
+/// on the plane perpendicular to the trunk (tree XY) and projected along it: returns the offset
+/// at p (multiply by the amplitude).
+double microStructure(const Vec3& p, double cellSize, uint64_t seed);
+
+/// Knot emphasis (4.4): relative darkening from the living and dead knot shares (0..1) of a
+/// sample: inside a knot, plus a dark rim of bark around dead (encased) knots.
+double knotEmphasis(double knotShare, double deadShare, const ColourParams& colour);
+
+}  // namespace nenrin

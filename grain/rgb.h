@@ -1,0 +1,16 @@
+#pragma once
+/// Scene-linear RGB (Rec.709 primaries).
+
+namespace nenrin {
+
+struct Rgb {
+    double r = 0, g = 0, b = 0;
+    constexpr Rgb operator+(const Rgb& o) const { return {r + o.r, g + o.g, b + o.b}; }
+    constexpr Rgb operator-(const Rgb& o) const { return {r - o.r, g - o.g, b - o.b}; }
+    constexpr Rgb operator*(double s) const { return {r * s, g * s, b * s}; }
+    constexpr bool operator==(const Rgb&) const = default;
+};
+
+constexpr Rgb mix(const Rgb& a, const Rgb& b, double t) { return a + (b - a) * t; }
+
+}  // namespace nenrin

@@ -1,0 +1,232 @@
+#include "skeleton/skeleton_file.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "skeleton/segment_geometry.h"
+#include "util/json_reader.h"
+
+namespace nenrin {
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+/// How far a branch's given start point may lie from its parent chain.
+constexpr double kOnChainTolerance = 1e-3;
+
+struct ChainGeometry {
+    std::vector<Vec3> points;
+    std::vector<double> births;
+    uint32_t firstSegment;
+};
+
+struct BranchDefaults {
+    double gamma = 0.5;
+    double deathTime = kNeverDies;
+    double diebackExponent = 1.0;
+    double length = 0;  // 0: "as long as the trunk"
+};
+
+/// Where along a chain a branch starts: the segment and the point on it.
+struct Attachment {
+    uint32_t segment;  // global segment id
+    Vec3 point;
+    double birth;
+};
+
+double polylineLength(const std::vector<Vec3>& pts) {
+    double l = 0;
+    for (size_t i = 1; i < pts.size(); ++i) l += length(pts[i] - pts[i - 1]);
+    return l;
+}
+
+Attachment attachAtDistance(const ChainGeometry& c, double at) {
+    double walked = 0;
+    for (size_t i = 0; i + 1 < c.points.size(); ++i) {
+        double l = length(c.points[i + 1] - c.points[i]);
+        if (at <= walked + l || i + 2 == c.points.size()) {
+            double t = l > 0 ? std::clamp((at - walked) / l, 0.0, 1.0) : 0;
+            return {static_cast<uint32_t>(c.firstSegment + i),
+                    lerp(c.points[i], c.points[i + 1], t),
+                    c.births[i] + (c.births[i + 1] - c.births[i]) * t};
+        }
+        walked += l;
+    }
+    return {c.firstSegment, c.points[0], c.births[0]};
+}
+
+class SkeletonParser {
+public:
+    explicit SkeletonParser(const std::string& file) : file_(file) {}
+
+    Skeleton parse(const nlohmann::json& json) {
+        JsonReader root(json, file_);
+        root.string("description", "");
+        root.choice("format", "nenrin-skeleton", {"nenrin-skeleton"});
+        elongationSpeed_ = root.positive("elongation_speed", 1.0);
+
+        if (!root.has("trunk")) throw root.error("trunk", "missing required trunk");
+        auto trunk = root.object("trunk");
+        std::vector<Vec3> points = trunk->requireVec3List("points");
+        if (points.size() < 2)
+            throw trunk->error(
+                "points", fmt::format("expected at least 2 trunk points, found {}", points.size()));
+        trunk->finish();
+        checkSegments(points, *trunk, "points");
+        ChainGeometry trunkGeometry{points, birthTimes(points, 0.0), 0};
+        skeleton_.addTrunk(trunkGeometry.points, trunkGeometry.births);
+        trunkLength_ = polylineLength(points);
+
+        if (auto d = root.object("branch_defaults")) {
+            defaults_ = readProperties(*d, defaults_);
+            d->finish();
+        }
+        for (auto& b : root.objectList("branches")) parseBranch(b, trunkGeometry, true);
+        root.finish();
+        return std::move(skeleton_);
+    }
+
+private:
+    std::vector<double> birthTimes(const std::vector<Vec3>& pts, double start) const {
+        std::vector<double> t{start};
+        for (size_t i = 1; i < pts.size(); ++i)
+            t.push_back(t.back() + length(pts[i] - pts[i - 1]) / elongationSpeed_);
+        return t;
+    }
+
+    void checkSegments(const std::vector<Vec3>& pts, const JsonReader& r, const std::string& key) {
+        for (size_t i = 1; i < pts.size(); ++i)
+            if (length(pts[i] - pts[i - 1]) < 1e-9)
+                throw r.error(key, fmt::format("points {} and {} coincide: expected segments of "
+                                               "non-zero length",
+                                               i - 1, i));
+    }
+
+    BranchDefaults readProperties(JsonReader& r, const BranchDefaults& base) {
+        BranchDefaults p = base;
+        p.gamma = r.positive("gamma", base.gamma);
+        p.deathTime = r.has("death_time") ? r.positive("death_time", 1) : base.deathTime;
+        p.diebackExponent = r.nonNegative("dieback_exponent", base.diebackExponent);
+        p.length = r.has("length") ? r.positive("length", 1) : base.length;
+        return p;
+    }
+
+    Attachment findStart(JsonReader& b, const ChainGeometry& parent, bool onTrunk) {
+        int given = b.has("height") + b.has("start") + b.has("at");
+        if (given != 1)
+            throw b.error("",
+                          "expected exactly one of \"height\" (m, on the trunk), \"at\" (m "
+                          "along the parent chain) or \"start\" ([x, y, z] on the parent)");
+        if (b.has("height")) {
+            if (!onTrunk)
+                throw b.error("height",
+                              "\"height\" places branches on the trunk; use \"at\" "
+                              "(distance along the parent branch) for sub-branches");
+            double h = b.requireNumber("height");
+            for (size_t i = 0; i + 1 < parent.points.size(); ++i) {
+                double z0 = parent.points[i].z, z1 = parent.points[i + 1].z;
+                if ((h - z0) * (h - z1) <= 0 && z0 != z1) {
+                    double t = (h - z0) / (z1 - z0);
+                    return {static_cast<uint32_t>(parent.firstSegment + i),
+                            lerp(parent.points[i], parent.points[i + 1], t),
+                            parent.births[i] + (parent.births[i + 1] - parent.births[i]) * t};
+                }
+            }
+            throw b.error("height",
+                          fmt::format("height {} m is off the trunk: expected a height between "
+                                      "the trunk's lowest and highest point",
+                                      h));
+        }
+        if (b.has("at")) {
+            double at = b.nonNegative("at", 0);
+            double len = polylineLength(parent.points);
+            if (at > len)
+                throw b.error("at", fmt::format("{} m is past the end of the parent chain "
+                                                "({:.4g} m long)",
+                                                at, len));
+            return attachAtDistance(parent, at);
+        }
+        Vec3 s = b.requireVec3("start");
+        double best = std::numeric_limits<double>::infinity();
+        Attachment att{};
+        for (size_t i = 0; i + 1 < parent.points.size(); ++i) {
+            auto pr = projectOntoSegment(s, parent.points[i], parent.points[i + 1]);
+            if (pr.distance2 < best) {
+                best = pr.distance2;
+                att = {static_cast<uint32_t>(parent.firstSegment + i), s,
+                       parent.births[i] + (parent.births[i + 1] - parent.births[i]) * pr.t};
+            }
+        }
+        if (std::sqrt(best) > kOnChainTolerance)
+            throw b.error("start", fmt::format("the branch starts {:.4g} m off its parent {}: "
+                                               "expected a point on it (within {} m)",
+                                               std::sqrt(best), onTrunk ? "trunk" : "branch",
+                                               kOnChainTolerance));
+        return att;
+    }
+
+    Vec3 readDirection(JsonReader& b) {
+        bool angles = b.has("azimuth") || b.has("elevation");
+        if (b.has("direction") && angles)
+            throw b.error("direction",
+                          "give either \"direction\" or \"azimuth\"/\"elevation\", "
+                          "not both");
+        if (b.has("direction")) {
+            Vec3 d = b.requireVec3("direction");
+            if (length(d) < 1e-12) throw b.error("direction", "expected a non-zero vector");
+            return normalize(d);
+        }
+        if (!angles)
+            throw b.error("",
+                          "missing direction: expected \"direction\" [x, y, z], "
+                          "\"azimuth\"/\"elevation\" (degrees) or \"points\"");
+        double az = b.number("azimuth", 0) * kDegree;
+        double el = b.inRange("elevation", 0, -90, 90) * kDegree;
+        return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+    }
+
+    void parseBranch(JsonReader& b, const ChainGeometry& parent, bool onTrunk) {
+        Attachment att = findStart(b, parent, onTrunk);
+        BranchDefaults props = readProperties(b, defaults_);
+        std::vector<Vec3> points{att.point};
+        if (b.has("points")) {
+            if (b.has("direction") || b.has("azimuth") || b.has("elevation") || b.has("length"))
+                throw b.error("points",
+                              "a branch is given either by \"points\" or by a "
+                              "direction and length, not both");
+            for (const Vec3& p : b.requireVec3List("points")) points.push_back(p);
+            if (points.size() < 2) throw b.error("points", "expected at least one point");
+            checkSegments(points, b, "points");
+        } else {
+            Vec3 d = readDirection(b);
+            double len = props.length > 0 ? props.length : trunkLength_;
+            points.push_back(att.point + d * len);
+        }
+        ChainGeometry geometry{points, birthTimes(points, att.birth),
+                               static_cast<uint32_t>(skeleton_.segments().size())};
+        skeleton_.addBranch(att.segment, geometry.points, geometry.births,
+                            {props.gamma, props.deathTime, props.diebackExponent});
+        for (auto& sub : b.objectList("branches")) parseBranch(sub, geometry, false);
+        b.finish();
+    }
+
+    std::string file_;
+    Skeleton skeleton_;
+    double elongationSpeed_ = 1;
+    double trunkLength_ = 0;
+    BranchDefaults defaults_;
+};
+
+}  // namespace
+
+Skeleton parseSkeleton(const nlohmann::json& json, const std::string& file) {
+    return SkeletonParser(file).parse(json);
+}
+
+Skeleton loadSkeletonFile(const std::string& path) {
+    return parseSkeleton(parseJsonFile(path), path);
+}
+
+}  // namespace nenrin

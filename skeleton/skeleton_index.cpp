@@ -1,0 +1,22 @@
+#include "skeleton/skeleton_index.h"
+
+namespace nenrin {
+
+namespace {
+// Below this many segments a loop beats a BVH traversal (embree.md measurements).
+constexpr size_t kBruteForceBelow = 64;
+
+std::unique_ptr<SegmentIndex> makeIndex(SegmentSoup soup, IndexBackend backend) {
+    bool brute = backend == IndexBackend::BruteForce ||
+                 (backend == IndexBackend::Automatic && soup.ids.size() < kBruteForceBelow);
+    return brute ? makeBruteForceSegmentIndex(std::move(soup))
+                 : makeEmbreeSegmentIndex(std::move(soup));
+}
+}  // namespace
+
+SkeletonIndex::SkeletonIndex(const Skeleton& skeleton, IndexBackend backend)
+    : skeleton_(&skeleton),
+      trunk_(makeIndex(collectSegments(skeleton, SegmentKind::Trunk), backend)),
+      branches_(makeIndex(collectSegments(skeleton, SegmentKind::Branch), backend)) {}
+
+}  // namespace nenrin

@@ -1,0 +1,35 @@
+#pragma once
+/// Geometric questions about a skeleton, answered fast: the nearest trunk segment and the branch
+/// segments within a radius. One index per class (trunk, branch): a single scene would have to
+/// keep its search radius at the larger of the two answers and is ~100x slower (embree.md).
+
+#include <memory>
+
+#include "skeleton/segment_index.h"
+#include "skeleton/skeleton.h"
+
+namespace nenrin {
+
+enum class IndexBackend {
+    Embree,      ///< Embree 3 BVH point queries
+    BruteForce,  ///< plain loops: the reference
+    Automatic,   ///< brute force for tiny classes, Embree otherwise
+};
+
+class SkeletonIndex {
+public:
+    /// The skeleton must outlive the index.
+    explicit SkeletonIndex(const Skeleton& skeleton,
+                           IndexBackend backend = IndexBackend::Automatic);
+
+    const Skeleton& skeleton() const { return *skeleton_; }
+    const SegmentIndex& trunk() const { return *trunk_; }
+    const SegmentIndex& branches() const { return *branches_; }
+
+private:
+    const Skeleton* skeleton_;
+    std::unique_ptr<SegmentIndex> trunk_;
+    std::unique_ptr<SegmentIndex> branches_;
+};
+
+}  // namespace nenrin

@@ -1,0 +1,46 @@
+#include "util/atomic_output.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <system_error>
+
+#include "util/input_error.h"
+
+namespace nenrin {
+
+namespace fs = std::filesystem;
+
+AtomicOutput::AtomicOutput(std::string path) : final_(std::move(path)) {
+    if (final_.empty()) throw InputError("", "output", "empty output path");
+    fs::path p(final_);
+    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw InputError(final_, "",
+                         "cannot write output: folder '" + dir.string() + "' does not exist");
+    if (fs::is_directory(p, ec))
+        throw InputError(final_, "", "cannot write output: this is a folder, expected a file name");
+    if (access(dir.c_str(), W_OK) != 0)
+        throw InputError(final_, "",
+                         "cannot write output: folder '" + dir.string() + "' is not writable");
+    fs::path tmp = dir / ("." + p.stem().string() + ".partial-" + std::to_string(getpid()) +
+                          p.extension().string());
+    temporary_ = tmp.string();
+}
+
+AtomicOutput::~AtomicOutput() {
+    if (!committed_) {
+        std::error_code ec;
+        fs::remove(temporary_, ec);
+    }
+}
+
+void AtomicOutput::commit() {
+    std::error_code ec;
+    fs::rename(temporary_, final_, ec);
+    if (ec) throw InputError(final_, "", "cannot write output: " + ec.message());
+    committed_ = true;
+}
+
+}  // namespace nenrin

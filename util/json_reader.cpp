@@ -1,0 +1,237 @@
+#include "util/json_reader.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace nenrin {
+
+namespace {
+
+std::string lineColumn(const std::string& text, size_t offset) {
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i < offset && i < text.size(); ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+    }
+    return fmt::format("line {}, column {}", line, column);
+}
+
+}  // namespace
+
+nlohmann::json parseJsonText(const std::string& text, const std::string& name) {
+    try {
+        return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::out_of_range& e) {
+        // A number too large for a double (1e999): nlohmann names the token but not its place.
+        std::string what = e.what();
+        auto q0 = what.find('\''), q1 = what.rfind('\'');
+        std::string token =
+            q0 != std::string::npos && q1 > q0 ? what.substr(q0 + 1, q1 - q0 - 1) : std::string();
+        size_t at = token.empty() ? std::string::npos : text.find(token);
+        throw InputError(name, at == std::string::npos ? "" : lineColumn(text, at),
+                         "number out of range (" + token + "): expected a finite number");
+    } catch (const nlohmann::json::parse_error& e) {
+        // e.byte is the 1-based offset of the offending character; turn it into line:column.
+        size_t end = std::min<size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+        std::string what = e.what();
+        // nlohmann prefixes "[json.exception.parse_error.101] parse error at line 1, column 2: ".
+        auto colon = what.find("error: ");
+        std::string detail = colon != std::string::npos ? what.substr(colon + 7) : what;
+        if (end >= text.size()) detail = "unexpected end of file (truncated JSON?): " + detail;
+        throw InputError(name, lineColumn(text, end), "invalid JSON: " + detail);
+    }
+}
+
+nlohmann::json parseJsonFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot open file for reading (does it exist?)");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return parseJsonText(ss.str(), path);
+}
+
+static const char* typeName(const nlohmann::json& v) {
+    if (v.is_number()) return "a number";
+    if (v.is_string()) return "a string";
+    if (v.is_boolean()) return "a boolean";
+    if (v.is_array()) return "an array";
+    if (v.is_object()) return "an object";
+    return "null";
+}
+
+JsonReader::JsonReader(const nlohmann::json& node, std::string file, std::string path)
+    : node_(&node), file_(std::move(file)), path_(std::move(path)) {
+    if (!node_->is_object())
+        throw InputError(file_, path_.empty() ? "(top level)" : path_,
+                         fmt::format("expected an object, found {}", typeName(*node_)));
+}
+
+bool JsonReader::has(const std::string& key) const { return node_->contains(key); }
+
+std::string JsonReader::pathOf(const std::string& key) const {
+    if (key.empty()) return path_.empty() ? "(top level)" : path_;
+    return path_.empty() ? key : path_ + "." + key;
+}
+
+InputError JsonReader::error(const std::string& key, const std::string& message) const {
+    return InputError(file_, pathOf(key), message);
+}
+
+const nlohmann::json& JsonReader::at(const std::string& key) {
+    used_.insert(key);
+    return (*node_)[key];
+}
+
+double JsonReader::toNumber(const nlohmann::json& v, const std::string& where) const {
+    if (!v.is_number())
+        throw InputError(file_, where, fmt::format("expected a number, found {}", typeName(v)));
+    double d = v.get<double>();
+    if (!std::isfinite(d)) throw InputError(file_, where, "expected a finite number");
+    return d;
+}
+
+Vec3 JsonReader::toVec3(const nlohmann::json& v, const std::string& where) const {
+    if (!v.is_array() || v.size() != 3)
+        throw InputError(
+            file_, where,
+            fmt::format("expected an array of 3 numbers [x, y, z], found {}",
+                        v.is_array() ? fmt::format("{} elements", v.size()) : typeName(v)));
+    return {toNumber(v[0], where + "[0]"), toNumber(v[1], where + "[1]"),
+            toNumber(v[2], where + "[2]")};
+}
+
+double JsonReader::number(const std::string& key, double fallback) {
+    return has(key) ? toNumber(at(key), pathOf(key)) : fallback;
+}
+
+double JsonReader::requireNumber(const std::string& key) {
+    if (!has(key)) throw error(key, "missing required number");
+    return number(key, 0);
+}
+
+double JsonReader::positive(const std::string& key, double fallback) {
+    double v = number(key, fallback);
+    if (!(v > 0)) throw error(key, fmt::format("expected a number > 0, found {}", v));
+    return v;
+}
+
+double JsonReader::requirePositive(const std::string& key) {
+    if (!has(key)) throw error(key, "missing required number (> 0)");
+    return positive(key, 1);
+}
+
+double JsonReader::nonNegative(const std::string& key, double fallback) {
+    double v = number(key, fallback);
+    if (!(v >= 0)) throw error(key, fmt::format("expected a number >= 0, found {}", v));
+    return v;
+}
+
+double JsonReader::inRange(const std::string& key, double fallback, double lo, double hi) {
+    double v = number(key, fallback);
+    if (!(v >= lo && v <= hi))
+        throw error(key, fmt::format("expected a number in [{}, {}], found {}", lo, hi, v));
+    return v;
+}
+
+long long JsonReader::integer(const std::string& key, long long fallback, long long lo,
+                              long long hi) {
+    if (!has(key)) return fallback;
+    const auto& v = at(key);
+    if (!v.is_number_integer())
+        throw error(key, fmt::format("expected an integer, found {}", typeName(v)));
+    long long i = v.get<long long>();
+    if (i < lo || i > hi)
+        throw error(key, fmt::format("expected an integer in [{}, {}], found {}", lo, hi, i));
+    return i;
+}
+
+bool JsonReader::boolean(const std::string& key, bool fallback) {
+    if (!has(key)) return fallback;
+    const auto& v = at(key);
+    if (!v.is_boolean())
+        throw error(key, fmt::format("expected true or false, found {}", typeName(v)));
+    return v.get<bool>();
+}
+
+std::string JsonReader::string(const std::string& key, const std::string& fallback) {
+    if (!has(key)) return fallback;
+    const auto& v = at(key);
+    if (!v.is_string()) throw error(key, fmt::format("expected a string, found {}", typeName(v)));
+    return v.get<std::string>();
+}
+
+std::string JsonReader::choice(const std::string& key, const std::string& fallback,
+                               std::initializer_list<const char*> options) {
+    std::string s = string(key, fallback);
+    std::string list;
+    for (const char* o : options) {
+        if (s == o) return s;
+        list += list.empty() ? fmt::format("\"{}\"", o) : fmt::format(", \"{}\"", o);
+    }
+    throw error(key, fmt::format("expected one of {}, found \"{}\"", list, s));
+}
+
+Vec3 JsonReader::vec3(const std::string& key, const Vec3& fallback) {
+    return has(key) ? toVec3(at(key), pathOf(key)) : fallback;
+}
+
+Vec3 JsonReader::requireVec3(const std::string& key) {
+    if (!has(key)) throw error(key, "missing required [x, y, z]");
+    return vec3(key, {});
+}
+
+std::vector<Vec3> JsonReader::requireVec3List(const std::string& key) {
+    if (!has(key)) throw error(key, "missing required array of [x, y, z] points");
+    const auto& v = at(key);
+    if (!v.is_array())
+        throw error(key,
+                    fmt::format("expected an array of [x, y, z] points, found {}", typeName(v)));
+    std::vector<Vec3> out;
+    for (size_t i = 0; i < v.size(); ++i)
+        out.push_back(toVec3(v[i], fmt::format("{}[{}]", pathOf(key), i)));
+    return out;
+}
+
+std::vector<double> JsonReader::numberList(const std::string& key) {
+    if (!has(key)) return {};
+    const auto& v = at(key);
+    if (!v.is_array())
+        throw error(key, fmt::format("expected an array of numbers, found {}", typeName(v)));
+    std::vector<double> out;
+    for (size_t i = 0; i < v.size(); ++i)
+        out.push_back(toNumber(v[i], fmt::format("{}[{}]", pathOf(key), i)));
+    return out;
+}
+
+std::optional<JsonReader> JsonReader::object(const std::string& key) {
+    if (!has(key)) return std::nullopt;
+    return JsonReader(at(key), file_, pathOf(key));
+}
+
+std::vector<JsonReader> JsonReader::objectList(const std::string& key) {
+    std::vector<JsonReader> out;
+    if (!has(key)) return out;
+    const auto& v = at(key);
+    if (!v.is_array())
+        throw error(key, fmt::format("expected an array of objects, found {}", typeName(v)));
+    for (size_t i = 0; i < v.size(); ++i)
+        out.emplace_back(v[i], file_, fmt::format("{}[{}]", pathOf(key), i));
+    return out;
+}
+
+void JsonReader::finish() const {
+    for (auto it = node_->begin(); it != node_->end(); ++it) {
+        if (!used_.count(it.key()))
+            throw InputError(file_, pathOf(it.key()),
+                             "unknown key (misspelled? see the format documentation)");
+    }
+}
+
+}  // namespace nenrin
