@@ -135,6 +135,7 @@ void addBakeCommands(CLI::App& app) {
             throw InputError(
                 "command line", "--res",
                 fmt::format("{} is over the cap of {} M pixels", res, kMaxSlicePixels >> 20));
+        checkOutputName(sliceCommon.output, {".exr"});
         auto wood = loadWood(sliceCommon);
         BakedGrid grid = sliceGrid(wood->skeleton, spec);
         addMetadata(grid, sliceCommon, *wood);
@@ -176,6 +177,7 @@ void addBakeCommands(CLI::App& app) {
                 "command line", "--res",
                 fmt::format("expected 2 to {} samples, found {}", kMaxVolumeSide, volumeRes));
         spec.resolution = volumeRes;
+        checkOutputName(volumeCommon.output, {".exr", ".vdb", ".df3"});
         auto wood = loadWood(volumeCommon);
         BakedGrid grid = volumeGrid(spec);
         addMetadata(grid, volumeCommon, *wood);

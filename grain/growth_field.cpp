@@ -29,30 +29,30 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
     : index_(&index), params_(params) {
     if (index.skeleton().empty() || index.trunk().size() == 0)
         throw std::invalid_argument("GrowthField: the skeleton has no trunk");
+    sway_ = makeSwayWaves(params_.sway);
+    segments_ = flattenSegments(index.skeleton());
+    maxGamma_ = index.skeleton().maxBranchGamma();
     maxSpeed_ = (1 + params_.taper.nu) * (1 + params_.direction.strength);
 }
 
 GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec3& p,
                                                    double t) const {
-    const Skeleton& sk = skeleton();
-    const SkeletonSegment& s = sk.segment(segmentId);
-    const SkeletonNode& a = sk.node(s.from);
-    const SkeletonNode& b = sk.node(s.to);
+    const FieldSegment& s = segments_[segmentId];
     PathTime r;
-    r.axisPoint = lerp(a.position, b.position, t);
-    r.axisDirection = normalize(b.position - a.position);
-    r.Ta = a.birthTime + (b.birthTime - a.birthTime) * t;
+    r.axisPoint = s.a + s.ab * t;
+    r.axisDirection = s.axis;
+    r.Ta = s.birthA + s.birthDelta * t;
     Vec3 d = p - r.axisPoint;
     r.distance = length(d);
     Vec3 n = r.distance > 0 ? d / r.distance : Vec3{};
     double speed = params_.radialSpeed * s.gamma *
                    taperFactor(r.Ta, params_.taper.nu, params_.taper.omega) *
                    directionFactor(n, params_.direction.sunRay, params_.direction.strength);
-    double db = r.distance * swayRadialFactor(n, r.axisDirection, r.Ta, params_.sway);
+    double db = r.distance * swayRadialFactor(n, s.axis, r.Ta, sway_);
     r.Tb = ageWarp(thickeningTime(db, speed), params_.age.delta);
     r.T = r.Ta + r.Tb;
     r.dead = false;
-    if (s.kind == SegmentKind::Branch && r.T > s.deathTime) {
+    if (s.branch && r.T > s.deathTime) {
         r.T = dieback(r.T, s.deathTime, s.diebackExponent);
         r.dead = true;
     }
@@ -60,9 +60,8 @@ GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec
 }
 
 GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3& p) const {
-    const Skeleton& sk = skeleton();
-    const SkeletonSegment& s = sk.segment(segmentId);
-    SegmentProjection proj = projectOntoSegment(p, sk.start(s), sk.end(s));
+    const FieldSegment& s = segments_[segmentId];
+    SegmentProjection proj = project(s, p);
     bool inSlab = proj.tRaw >= 0 && proj.tRaw <= 1;
     // Regions A/B (inside one segment's slab) and C (beyond the joint on the convex side: the
     // clamped nearest point is the joint Q) need no blend.
@@ -78,14 +77,14 @@ GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3&
     int count = 0;
     auto slabMember = [&](int32_t id) -> bool {
         if (id == kNone) return false;
-        const SkeletonSegment& x = sk.segment(static_cast<uint32_t>(id));
-        SegmentProjection px = projectOntoSegment(p, sk.start(x), sk.end(x));
+        const FieldSegment& x = segments_[static_cast<uint32_t>(id)];
+        SegmentProjection px = project(x, p);
         if (px.tRaw < 0 || px.tRaw > 1) return false;
-        members[count++] = {static_cast<uint32_t>(id), px.tRaw, length(sk.end(x) - sk.start(x))};
+        members[count++] = {static_cast<uint32_t>(id), px.tRaw, x.length};
         return true;
     };
     bool hasPrevious = slabMember(s.previous);
-    members[count++] = {segmentId, proj.tRaw, length(sk.end(s) - sk.start(s))};
+    members[count++] = {segmentId, proj.tRaw, s.length};
     bool hasNext = slabMember(s.next);
     if (!hasPrevious && !hasNext) return segmentPathTime(segmentId, p, proj.tRaw);
 
@@ -108,10 +107,79 @@ GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3&
 double GrowthField::branchSearchRadius(double trunkTime) const {
     // A branch path at distance D has T_c >= (D (1 - jitter) / (gamma Sb maxSpeed))^delta; once
     // that reaches reach x T1 its weight is 0, so farther segments need not be looked at.
-    double gamma = skeleton().maxBranchGamma();
+    double gamma = maxGamma_;
     double years =
         std::pow(params_.junction.reach * std::max(trunkTime, 0.0), 1.0 / params_.age.delta);
     return gamma * params_.radialSpeed * maxSpeed_ * years / (1 - params_.sway.radialJitter);
+}
+
+void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
+                                    double halfDiagonal, double maxTrunkTime) const {
+    // Per chain near the tile, keep only what can matter for some point of the tile; every
+    // test here is exact (a bound over the whole box), so results do not depend on tiling.
+    const Skeleton& sk = skeleton();
+    const Vec3 centre = (lo + hi) * 0.5;
+    const auto& cands = scratch.branchCandidates;
+    auto& chains = scratch.tileChains;
+    auto& kept = scratch.keptSegments;
+    auto& dist = scratch.centreDistances;
+    chains.clear();
+    kept.clear();
+    const double speedBound = params_.radialSpeed * maxSpeed_ / (1 - params_.sway.radialJitter);
+    size_t k = 0;
+    while (k < cands.size()) {
+        const uint32_t chain = segments_[cands[k]].chain;
+        size_t begin = k;
+        dist.clear();
+        double nearest = kInf;
+        for (; k < cands.size() && segments_[cands[k]].chain == chain; ++k) {
+            dist.push_back(std::sqrt(project(segments_[cands[k]], centre).distance2));
+            nearest = std::min(nearest, dist.back());
+        }
+        // 1. The whole box behind the plane F of the branch: sin(alpha) <= 0 everywhere.
+        const SkeletonChain& c = sk.chain(chain);
+        const SkeletonSegment& first = sk.segment(c.firstSegment);
+        GrowthScratch::TileChain tc;
+        tc.chain = chain;
+        tc.start = sk.start(first);
+        tc.direction = normalize(sk.end(first) - tc.start);
+        bool anyAhead = false;
+        for (int corner = 0; corner < 8 && !anyAhead; ++corner) {
+            Vec3 x{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+            anyAhead = dot(x - tc.start, tc.direction) > 0;
+        }
+        if (!anyAhead) continue;
+        // 2. Segments that cannot be any point's nearest: farther from the centre than the
+        //    nearest one plus the box diameter.
+        tc.begin = static_cast<uint32_t>(kept.size());
+        tc.lower = {kInf, kInf, kInf};
+        tc.upper = -tc.lower;
+        tc.gamma = 0;
+        tc.birthBound = kInf;
+        for (size_t j = begin; j < k; ++j) {
+            if (dist[j - begin] > nearest + 2 * halfDiagonal) continue;
+            const FieldSegment& s = segments_[cands[j]];
+            kept.push_back(cands[j]);
+            tc.lower = {std::min({tc.lower.x, s.a.x, s.a.x + s.ab.x}),
+                        std::min({tc.lower.y, s.a.y, s.a.y + s.ab.y}),
+                        std::min({tc.lower.z, s.a.z, s.a.z + s.ab.z})};
+            tc.upper = {std::max({tc.upper.x, s.a.x, s.a.x + s.ab.x}),
+                        std::max({tc.upper.y, s.a.y, s.a.y + s.ab.y}),
+                        std::max({tc.upper.z, s.a.z, s.a.z + s.ab.z})};
+            tc.gamma = std::max(tc.gamma, s.gammaBound);
+            tc.birthBound = std::min(tc.birthBound, s.birthBound);
+        }
+        tc.end = static_cast<uint32_t>(kept.size());
+        // 3. The chain's path time over the whole box is past reach x T1 of every point.
+        double closest = std::max(0.0, nearest - halfDiagonal);
+        double lowerBound =
+            tc.birthBound + ageWarp(closest / (tc.gamma * speedBound), params_.age.delta);
+        if (lowerBound >= params_.junction.reach * maxTrunkTime) {
+            kept.resize(tc.begin);
+            continue;
+        }
+        chains.push_back(tc);
+    }
 }
 
 GrowthSample GrowthField::evaluate(const Vec3& p) const {
@@ -130,7 +198,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     pts.resize(n);
     Vec3 lo{kInf, kInf, kInf}, hi = -lo;
     for (size_t i = 0; i < n; ++i) {
-        pts[i] = input[i] + swayDisplacement(input[i], params_.sway);
+        pts[i] = input[i] + swayDisplacement(input[i], sway_);
         lo = {std::min(lo.x, pts[i].x), std::min(lo.y, pts[i].y), std::min(lo.z, pts[i].z)};
         hi = {std::max(hi.x, pts[i].x), std::max(hi.y, pts[i].y), std::max(hi.z, pts[i].z)};
     }
@@ -150,8 +218,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         const Vec3& p = pts[i];
         Best best;
         for (uint32_t id : trunkCands) {
-            const auto& s = sk.segment(id);
-            double d2 = projectOntoSegment(p, sk.start(s), sk.end(s)).distance2;
+            double d2 = project(segments_[id], p).distance2;
             if (d2 < best.distance2) best = {static_cast<int32_t>(id), d2};
         }
         PathTime trunk = chainPathTime(static_cast<uint32_t>(best.segment), p);
@@ -172,44 +239,54 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
                               branchCands);
     if (branchCands.empty()) return;
     std::sort(branchCands.begin(), branchCands.end());
+    prepareTileChains(scratch, lo, hi, halfDiagonal, maxTrunkTime);
 
     const double p = params_.junction.p;
+    const double reach = params_.junction.reach;
+    const double speedBound = params_.radialSpeed * maxSpeed_ / (1 - params_.sway.radialJitter);
     for (size_t i = 0; i < n; ++i) {
         const Vec3& pt = pts[i];
         GrowthSample& g = out[i];
         const double t1 = g.trunkTime;
-        const double radius = branchSearchRadius(t1);
-        const double radius2 = radius * radius;
         auto& terms = scratch.terms;
         terms.clear();
-        // Candidates are sorted by id and ids are contiguous per chain: one pass finds each
-        // chain's nearest segment within the radius.
-        size_t k = 0;
-        while (k < branchCands.size()) {
-            uint32_t chain = sk.segment(branchCands[k]).chain;
+        for (const auto& tc : scratch.tileChains) {
+            // Beyond this distance the chain's path time is past reach x T1: weight 0.
+            double slack = reach * t1 - tc.birthBound;
+            if (slack <= 0) continue;
+            double radius = tc.gamma * speedBound * ageUnwarp(slack, params_.age.delta);
+            double radius2 = radius * radius;
+            // alpha: angle between QP and the plane F through the branch start Q,
+            // perpendicular to the branch (eq. 5). Behind F the branch does not count.
+            Vec3 v = pt - tc.start;
+            double lv = length(v);
+            double sinAlpha = lv > 0 ? dot(v, tc.direction) / lv : 0;
+            if (sinAlpha <= 0) continue;
+            // Quick reject: the box around the chain's kept segments is out of reach.
+            Vec3 out{std::max({tc.lower.x - pt.x, 0.0, pt.x - tc.upper.x}),
+                     std::max({tc.lower.y - pt.y, 0.0, pt.y - tc.upper.y}),
+                     std::max({tc.lower.z - pt.z, 0.0, pt.z - tc.upper.z})};
+            if (dot(out, out) > radius2) continue;
             Best best;
-            for (; k < branchCands.size() && sk.segment(branchCands[k]).chain == chain; ++k) {
-                const auto& s = sk.segment(branchCands[k]);
-                double d2 = projectOntoSegment(pt, sk.start(s), sk.end(s)).distance2;
-                if (d2 <= radius2 && d2 < best.distance2)
-                    best = {static_cast<int32_t>(branchCands[k]), d2};
+            for (uint32_t k = tc.begin; k < tc.end; ++k) {
+                uint32_t id = scratch.keptSegments[k];
+                double d2 = project(segments_[id], pt).distance2;
+                if (d2 <= radius2 && d2 < best.distance2) best = {static_cast<int32_t>(id), d2};
             }
             if (best.segment == kNone) continue;
-            // alpha: angle between QP and the plane F through the branch start Q,
-            // perpendicular to the branch (eq. 5).
-            const SkeletonChain& c = sk.chain(chain);
-            const SkeletonSegment& first = sk.segment(c.firstSegment);
-            Vec3 q = sk.start(first);
-            Vec3 v = pt - q;
-            double lv = length(v);
-            double sinAlpha = lv > 0 ? dot(v, normalize(sk.end(first) - q)) / lv : 0;
-            if (sinAlpha <= 0) continue;
+            // The path through the nearest segment cannot come in under reach x T1: skip it
+            // before paying for the full path time.
+            const FieldSegment& bs = segments_[static_cast<uint32_t>(best.segment)];
+            if (bs.birthBound + ageWarp(std::sqrt(best.distance2) / (bs.gammaBound * speedBound),
+                                        params_.age.delta) >=
+                reach * t1)
+                continue;
             PathTime bp = chainPathTime(static_cast<uint32_t>(best.segment), pt);
-            if (junctionReachWeight(bp.T, t1, params_.junction.reach) <= 0) continue;
+            if (junctionReachWeight(bp.T, t1, reach) <= 0) continue;
             // A dead knot: the branch had died before the trunk's bark reached P, so P lies in
             // the dead stub that the trunk encased.
-            bool dead = t1 > sk.segment(static_cast<uint32_t>(best.segment)).deathTime;
-            terms.push_back({chain, bp.T, sinAlpha, bp.distance, dead});
+            bool dead = t1 > segments_[static_cast<uint32_t>(best.segment)].deathTime;
+            terms.push_back({tc.chain, bp.T, sinAlpha, bp.distance, dead});
         }
         if (terms.empty()) continue;
 

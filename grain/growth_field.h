@@ -19,7 +19,9 @@
 #include <span>
 #include <vector>
 
+#include "grain/field_segment.h"
 #include "grain/grain_params.h"
+#include "grain/growth_terms.h"
 #include "skeleton/skeleton_index.h"
 
 namespace nenrin {
@@ -42,6 +44,18 @@ struct GrowthScratch {
     std::vector<Vec3> points;
     std::vector<uint32_t> trunkCandidates;
     std::vector<uint32_t> branchCandidates;
+    /// A branch chain near the current tile, with the segments that may matter for it.
+    struct TileChain {
+        uint32_t chain;
+        uint32_t begin, end;    ///< range in keptSegments
+        Vec3 start, direction;  ///< Q and the normal of plane F (eq. 5)
+        double gamma;           ///< largest gamma of the kept segments and their neighbours
+        double birthBound;      ///< smallest node birth time they can use
+        Vec3 lower, upper;      ///< bounding box of the kept segments
+    };
+    std::vector<TileChain> tileChains;
+    std::vector<uint32_t> keptSegments;
+    std::vector<double> centreDistances;
     struct ChainTerm {
         uint32_t chain;
         double time, sinAlpha, distance;
@@ -76,9 +90,14 @@ public:
 private:
     PathTime segmentPathTime(uint32_t segment, const Vec3& p, double t) const;
     double branchSearchRadius(double trunkTime) const;
+    void prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
+                           double halfDiagonal, double maxTrunkTime) const;
 
     const SkeletonIndex* index_;
     GrainParams params_;
+    SwayWaves sway_;
+    std::vector<FieldSegment> segments_;  ///< the skeleton's segments, flattened
+    double maxGamma_;                     ///< largest branch gamma of the skeleton
     double maxSpeed_;  ///< upper bound of the radial speed factor (taper x direction)
 };
 

@@ -13,46 +13,59 @@ double lateWoodFraction(double growthTime, double exponent) {
     return std::pow(s, exponent);
 }
 
-Vec3 swayDisplacement(const Vec3& p, const SwayParams& sway) {
-    if (sway.amplitude == 0) return {};
-    // Three sines per axis with seeded directions and phases; each axis' sum is normalised to
-    // keep |displacement| <= amplitude per axis.
+SwayWaves makeSwayWaves(const SwayParams& sway) {
+    SwayWaves w;
+    w.amplitude = sway.amplitude;
+    w.radialJitter = sway.radialJitter;
     const double k = 2 * std::numbers::pi / sway.wavelength;
-    Vec3 out;
-    for (int axis = 0; axis < 3; ++axis) {
-        double sum = 0;
-        for (int i = 0; i < 3; ++i) {
-            uint64_t key = static_cast<uint64_t>(axis * 3 + i);
+    for (int axis = 0; axis < 3; ++axis)
+        for (int i = 0; i < SwayWaves::kWaves; ++i) {
+            // Random directions; harmonic i has about 1/(i+1) of the given wavelength.
+            uint64_t key = static_cast<uint64_t>(axis * SwayWaves::kWaves + i);
             double theta = 2 * std::numbers::pi * uniform01(sway.seed, key, 1);
             double phi = std::acos(2 * uniform01(sway.seed, key, 2) - 1);
-            double scale = (0.6 + 0.8 * uniform01(sway.seed, key, 3)) / (i + 1);
+            double scale = 0.6 + 0.8 * uniform01(sway.seed, key, 3);
             Vec3 dir{std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta),
                      std::cos(phi)};
-            double phase = 2 * std::numbers::pi * uniform01(sway.seed, key, 4);
-            sum += std::sin(k * scale * (i + 1) * dot(dir, p) + phase) / (i + 1);
+            w.direction[axis][i] = dir * (k * scale * (i + 1));
+            w.phase[axis][i] = 2 * std::numbers::pi * uniform01(sway.seed, key, 4);
         }
-        (axis == 0 ? out.x : axis == 1 ? out.y : out.z) = sum / (1.0 + 0.5 + 1.0 / 3.0);
+    for (int i = 0; i < SwayWaves::kWaves; ++i) {
+        w.radialPhase[i] = 2 * std::numbers::pi * uniform01(sway.seed, 100 + i, 0);
+        w.radialDrift[i] = 0.4 * (uniform01(sway.seed, 100 + i, 1) - 0.5);
     }
-    return out * sway.amplitude;
+    return w;
+}
+
+Vec3 swayDisplacement(const Vec3& p, const SwayWaves& w) {
+    if (w.amplitude == 0) return {};
+    // Harmonic i has weight 1/(i+1); the weights sum to `norm`, so |component| <= amplitude.
+    constexpr double norm = 1.0 + 1.0 / 2 + 1.0 / 3;
+    double c[3];
+    for (int axis = 0; axis < 3; ++axis) {
+        double sum = 0;
+        for (int i = 0; i < SwayWaves::kWaves; ++i)
+            sum += std::sin(dot(w.direction[axis][i], p) + w.phase[axis][i]) / (i + 1);
+        c[axis] = sum / norm;
+    }
+    return Vec3{c[0], c[1], c[2]} * w.amplitude;
 }
 
 double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elongationYears,
-                        const SwayParams& sway) {
-    if (sway.radialJitter == 0) return 1;
+                        const SwayWaves& w) {
+    if (w.radialJitter == 0) return 1;
     // Azimuth about the axis, measured from world X projected onto the normal plane (world Y
     // for axes close to X), so it varies smoothly along a smoothly bending axis.
     Vec3 ref = std::abs(axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
     Vec3 u = normalize(ref - axis * dot(ref, axis));
     Vec3 v = cross(axis, u);
     double az = std::atan2(dot(outwardNormal, v), dot(outwardNormal, u));
-    double h = 0, norm = 0;
-    for (int k = 1; k <= 3; ++k) {
-        double phase = 2 * std::numbers::pi * uniform01(sway.seed, 100 + k, 0);
-        double drift = 0.4 * (uniform01(sway.seed, 100 + k, 1) - 0.5);  // radians per year
-        h += std::sin(k * az + phase + drift * elongationYears) / k;
-        norm += 1.0 / k;
-    }
-    return 1 + sway.radialJitter * h / norm;
+    constexpr double norm = 1.0 + 1.0 / 2 + 1.0 / 3;
+    double h = 0;
+    for (int i = 0; i < SwayWaves::kWaves; ++i)
+        h += std::sin((i + 1) * az + w.radialPhase[i] + w.radialDrift[i] * elongationYears) /
+             (i + 1);
+    return 1 + w.radialJitter * h / norm;
 }
 
 double microStructure(const Vec3& p, double cellSize, uint64_t seed) {

@@ -33,6 +33,11 @@ inline double ageWarp(double thickeningYears, double delta) {
     return delta == 1.0 ? thickeningYears : std::pow(thickeningYears, delta);
 }
 
+/// Inverse of ageWarp: the thickening years that eq. 8 maps to `years`.
+inline double ageUnwarp(double years, double delta) {
+    return delta == 1.0 ? years : std::pow(years, 1.0 / delta);
+}
+
 /// Eq. 9: taper, radial speed factor 1 + nu omega^Ta: the trunk thickens faster near its base.
 inline double taperFactor(double elongationYears, double nu, double omega) {
     return nu == 0.0 ? 1.0 : 1.0 + nu * std::pow(omega, std::max(elongationYears, 0.0));
@@ -89,14 +94,25 @@ inline double heartwoodWeight(double growthTime, double start, double end) {
     return (end - growthTime) / (end - start);
 }
 
-/// Section 4.5, main method: sample-point displacement, a seeded sum of sines of the coordinates.
-Vec3 swayDisplacement(const Vec3& p, const SwayParams& sway);
+/// The seeded waves of section 4.5, drawn once from SwayParams (hashing per sample is slow).
+struct SwayWaves {
+    static constexpr int kWaves = 3;  ///< sines per axis, and harmonics of the radial factor
+    double amplitude = 0, radialJitter = 0;
+    Vec3 direction[3][kWaves];  ///< wave vectors (1/m) per displaced axis
+    double phase[3][kWaves];
+    double radialPhase[kWaves], radialDrift[kWaves];  ///< radians, radians per year
+};
+SwayWaves makeSwayWaves(const SwayParams& sway);
+
+/// Section 4.5, main method: sample-point displacement, a seeded sum of sines of the coordinates;
+/// each component is at most the amplitude.
+Vec3 swayDisplacement(const Vec3& p, const SwayWaves& waves);
 
 /// Section 4.5, second method: a factor 1 + radialJitter h(azimuth, Ta), |h| <= 1, on Db. The
 /// azimuth is that of the outward normal about the skeleton axis, so rings become gently lobed
 /// and the lobes drift along the trunk.
 double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elongationYears,
-                        const SwayParams& sway);
+                        const SwayWaves& waves);
 
 /// Section 4.6: micro-structure. A 16 x 16 table of seeded brightness offsets in [-1, 1], tiled
 /// on the plane perpendicular to the trunk (tree XY) and projected along it: returns the offset

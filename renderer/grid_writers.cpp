@@ -23,7 +23,18 @@ static std::string lowerExtension(const std::string& path) {
     return e;
 }
 
+void checkOutputName(const std::string& path, const std::vector<std::string>& extensions) {
+    std::string e = lowerExtension(path);
+    std::string list;
+    for (const auto& x : extensions) {
+        if (e == x) return;
+        list += (list.empty() ? "" : ", ") + x;
+    }
+    throw InputError(path, "", "unsupported output file name: expected a name ending in " + list);
+}
+
 std::vector<std::string> writeExr(const BakedGrid& grid, const std::string& path) {
+    checkOutputName(path, {".exr"});
     AtomicOutput out(path);
     const int height = grid.height * grid.depth;
     OIIO::ImageSpec spec(grid.width, height, BakedGrid::kChannels, OIIO::TypeDesc::FLOAT);
@@ -149,11 +160,11 @@ std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path
 }
 
 std::vector<std::string> writeVolume(const BakedGrid& grid, const std::string& path) {
+    checkOutputName(path, {".exr", ".vdb", ".df3"});
     std::string e = lowerExtension(path);
     if (e == ".exr") return writeExr(grid, path);
     if (e == ".vdb") return writeVdb(grid, path);
-    if (e == ".df3") return writeDf3(grid, path);
-    throw InputError(path, "", "unknown volume format: expected a .exr, .vdb or .df3 file name");
+    return writeDf3(grid, path);
 }
 
 }  // namespace nenrin

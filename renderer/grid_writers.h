@@ -20,6 +20,10 @@ std::vector<std::string> writeExr(const BakedGrid& grid, const std::string& path
 std::vector<std::string> writeVdb(const BakedGrid& grid, const std::string& path);
 std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path);
 
+/// Throws InputError unless `path` ends in one of `extensions` (lower case, with the dot). Call
+/// before baking, so a bad name fails at once.
+void checkOutputName(const std::string& path, const std::vector<std::string>& extensions);
+
 /// Dispatches on the extension (.exr, .vdb, .df3); throws InputError for anything else.
 std::vector<std::string> writeVolume(const BakedGrid& grid, const std::string& path);
 

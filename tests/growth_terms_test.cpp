@@ -72,19 +72,20 @@ TEST(GrowthTerms, SwayIsBoundedSeededAndSmooth) {
     sway.amplitude = 0.01;
     sway.radialJitter = 0.1;
     Vec3 p{0.1, 0.2, 3};
-    Vec3 d = swayDisplacement(p, sway);
+    SwayWaves waves = makeSwayWaves(sway);
+    Vec3 d = swayDisplacement(p, waves);
     EXPECT_LE(std::abs(d.x), 0.01);
     EXPECT_LE(std::abs(d.z), 0.01);
     EXPECT_GT(length(d), 0);
-    EXPECT_EQ(d, swayDisplacement(p, sway));  // deterministic
-    Vec3 e = swayDisplacement(p + Vec3{1e-6, 0, 0}, sway);
+    EXPECT_EQ(d, swayDisplacement(p, makeSwayWaves(sway)));  // deterministic
+    Vec3 e = swayDisplacement(p + Vec3{1e-6, 0, 0}, waves);
     EXPECT_LT(length(e - d), 1e-6);  // smooth
     sway.seed = 2;
-    EXPECT_NE(d, swayDisplacement(p, sway));  // seeded
-    double f = swayRadialFactor({1, 0, 0}, {0, 0, 1}, 5, sway);
+    EXPECT_NE(d, swayDisplacement(p, makeSwayWaves(sway)));  // seeded
+    double f = swayRadialFactor({1, 0, 0}, {0, 0, 1}, 5, waves);
     EXPECT_GE(f, 0.9);
     EXPECT_LE(f, 1.1);
-    SwayParams none;
+    SwayWaves none = makeSwayWaves(SwayParams{});
     EXPECT_EQ(swayDisplacement(p, none), Vec3{});
     EXPECT_EQ(swayRadialFactor({1, 0, 0}, {0, 0, 1}, 5, none), 1.0);
 }

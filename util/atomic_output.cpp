@@ -24,8 +24,12 @@ AtomicOutput::AtomicOutput(std::string path) : final_(std::move(path)) {
     if (access(dir.c_str(), W_OK) != 0)
         throw InputError(final_, "",
                          "cannot write output: folder '" + dir.string() + "' is not writable");
-    fs::path tmp = dir / ("." + p.stem().string() + ".partial-" + std::to_string(getpid()) +
-                          p.extension().string());
+    std::string name = ".";
+    name += p.stem().string();
+    name += ".partial-";
+    name += std::to_string(getpid());
+    name += p.extension().string();
+    fs::path tmp = dir / name;
     temporary_ = tmp.string();
 }
 

@@ -25,25 +25,52 @@ std::string lineColumn(const std::string& text, size_t offset) {
 
 }  // namespace
 
+/// Finds where nlohmann's parser gives up, for errors that do not carry a position (a number
+/// too large for a double): a SAX pass that stops at the first error and keeps its offset.
+struct ErrorLocator : nlohmann::json_sax<nlohmann::json> {
+    size_t offset = 0;
+    bool null() override { return true; }
+    bool boolean(bool) override { return true; }
+    bool number_integer(number_integer_t) override { return true; }
+    bool number_unsigned(number_unsigned_t) override { return true; }
+    bool number_float(number_float_t, const string_t&) override { return true; }
+    bool string(string_t&) override { return true; }
+    bool binary(binary_t&) override { return true; }
+    bool start_object(std::size_t) override { return true; }
+    bool key(string_t&) override { return true; }
+    bool end_object() override { return true; }
+    bool start_array(std::size_t) override { return true; }
+    bool end_array() override { return true; }
+    bool parse_error(std::size_t position, const std::string&,
+                     const nlohmann::detail::exception&) override {
+        offset = position;
+        return false;
+    }
+};
+
 nlohmann::json parseJsonText(const std::string& text, const std::string& name) {
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::out_of_range& e) {
-        // A number too large for a double (1e999): nlohmann names the token but not its place.
+        ErrorLocator locator;
+        nlohmann::json::sax_parse(text, &locator);
         std::string what = e.what();
         auto q0 = what.find('\''), q1 = what.rfind('\'');
-        std::string token =
-            q0 != std::string::npos && q1 > q0 ? what.substr(q0 + 1, q1 - q0 - 1) : std::string();
-        size_t at = token.empty() ? std::string::npos : text.find(token);
-        throw InputError(name, at == std::string::npos ? "" : lineColumn(text, at),
+        std::string token = q0 != std::string::npos && q1 > q0 ? what.substr(q0 + 1, q1 - q0 - 1)
+                                                               : std::string("number");
+        // The SAX position is just past the number: report where the number starts.
+        size_t start = locator.offset >= token.size() ? locator.offset - token.size() : 0;
+        throw InputError(name, lineColumn(text, start),
                          "number out of range (" + token + "): expected a finite number");
     } catch (const nlohmann::json::parse_error& e) {
         // e.byte is the 1-based offset of the offending character; turn it into line:column.
         size_t end = std::min<size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+        // nlohmann says "[json.exception.parse_error.101] parse error at line 1, column 2:
+        // syntax error while parsing ...": keep what follows the position.
         std::string what = e.what();
-        // nlohmann prefixes "[json.exception.parse_error.101] parse error at line 1, column 2: ".
-        auto colon = what.find("error: ");
-        std::string detail = colon != std::string::npos ? what.substr(colon + 7) : what;
+        auto at = what.find("parse error");
+        auto colon = at == std::string::npos ? std::string::npos : what.find(": ", at);
+        std::string detail = colon != std::string::npos ? what.substr(colon + 2) : what;
         if (end >= text.size()) detail = "unexpected end of file (truncated JSON?): " + detail;
         throw InputError(name, lineColumn(text, end), "invalid JSON: " + detail);
     }
