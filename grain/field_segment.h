@@ -17,9 +17,11 @@ struct FieldSegment {
     double length = 0;
     double birthA = 0, birthDelta = 0;  ///< birth time at a, and at b minus at a
     double gamma = 1, deathTime = kNeverDies, diebackExponent = 0;
-    /// Bounds over this segment and its chain neighbours (all that its joint blend can use):
-    /// the smallest node birth time and the largest gamma.
-    double birthBound = 0, gammaBound = 1;
+    /// Bounds over this segment and its chain neighbours (all that its joint blend can use),
+    /// chosen so that a time computed from them is a lower bound of the path time: the
+    /// smallest node birth time, the largest gamma, the latest death and the smallest
+    /// dieback exponent.
+    double birthBound = 0, gammaBound = 1, deathBound = kNeverDies, diebackBound = 0;
     int32_t previous = kNone, next = kNone;
     uint32_t chain = 0;
     bool branch = false;
@@ -56,11 +58,15 @@ inline std::vector<FieldSegment> flattenSegments(const Skeleton& sk) {
     for (auto& f : out) {
         f.birthBound = std::min(f.birthA, f.birthA + f.birthDelta);
         f.gammaBound = f.gamma;
+        f.deathBound = f.branch ? f.deathTime : kNeverDies;
+        f.diebackBound = f.diebackExponent;
         for (int32_t m : {f.previous, f.next}) {
             if (m == kNone) continue;
             const FieldSegment& x = out[static_cast<size_t>(m)];
             f.birthBound = std::min({f.birthBound, x.birthA, x.birthA + x.birthDelta});
             f.gammaBound = std::max(f.gammaBound, x.gamma);
+            f.deathBound = std::max(f.deathBound, x.branch ? x.deathTime : kNeverDies);
+            f.diebackBound = std::min(f.diebackBound, x.diebackExponent);
         }
     }
     return out;

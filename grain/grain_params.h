@@ -15,8 +15,8 @@ namespace nenrin {
 /// Trunk-branch junction blend (eq. 5, our reconstruction) and its cut-off.
 struct JunctionParams {
     double p = 2;      ///< smooth-min exponent: 2 is the paper's form, large values approach min()
-    double reach = 4;  ///< a branch path stops counting (smoothly) once its time exceeds
-                       ///< reach x the trunk time: bounds the work per point
+    double reach = 4;  ///< a branch path stops counting (smoothly) once T_c / sin(alpha)
+                       ///< exceeds reach x the trunk time: bounds the work per point
 };
 
 /// Eq. 7: the sun side grows faster.

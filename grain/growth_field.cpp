@@ -48,7 +48,8 @@ GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec
     double speed = params_.radialSpeed * s.gamma *
                    taperFactor(r.Ta, params_.taper.nu, params_.taper.omega) *
                    directionFactor(n, params_.direction.sunRay, params_.direction.strength);
-    double db = r.distance * swayRadialFactor(n, s.axis, r.Ta, sway_);
+    double db = sway_.radialJitter == 0 ? r.distance
+                                        : r.distance * swayRadialFactor(n, s.axis, r.Ta, sway_);
     r.Tb = ageWarp(thickeningTime(db, speed), params_.age.delta);
     r.T = r.Ta + r.Tb;
     r.dead = false;
@@ -124,7 +125,7 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
     auto& kept = scratch.keptSegments;
     auto& dist = scratch.centreDistances;
     chains.clear();
-    kept.clear();
+    kept.reset(centre);
     const double speedBound = params_.radialSpeed * maxSpeed_ / (1 - params_.sway.radialJitter);
     size_t k = 0;
     while (k < cands.size()) {
@@ -159,7 +160,7 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
         for (size_t j = begin; j < k; ++j) {
             if (dist[j - begin] > nearest + 2 * halfDiagonal) continue;
             const FieldSegment& s = segments_[cands[j]];
-            kept.push_back(cands[j]);
+            kept.push(s.a, s.ab, s.invLength2, cands[j]);
             tc.lower = {std::min({tc.lower.x, s.a.x, s.a.x + s.ab.x}),
                         std::min({tc.lower.y, s.a.y, s.a.y + s.ab.y}),
                         std::min({tc.lower.z, s.a.z, s.a.z + s.ab.z})};
@@ -175,7 +176,7 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
         double lowerBound =
             tc.birthBound + ageWarp(closest / (tc.gamma * speedBound), params_.age.delta);
         if (lowerBound >= params_.junction.reach * maxTrunkTime) {
-            kept.resize(tc.begin);
+            kept.truncate(tc.begin);
             continue;
         }
         chains.push_back(tc);
@@ -251,38 +252,35 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         auto& terms = scratch.terms;
         terms.clear();
         for (const auto& tc : scratch.tileChains) {
-            // Beyond this distance the chain's path time is past reach x T1: weight 0.
-            double slack = reach * t1 - tc.birthBound;
-            if (slack <= 0) continue;
-            double radius = tc.gamma * speedBound * ageUnwarp(slack, params_.age.delta);
-            double radius2 = radius * radius;
             // alpha: angle between QP and the plane F through the branch start Q,
             // perpendicular to the branch (eq. 5). Behind F the branch does not count.
             Vec3 v = pt - tc.start;
             double lv = length(v);
             double sinAlpha = lv > 0 ? dot(v, tc.direction) / lv : 0;
             if (sinAlpha <= 0) continue;
+            // Beyond this distance T_c / sin(alpha) is past reach x T1: weight 0.
+            double slack = reach * t1 * sinAlpha - tc.birthBound;
+            if (slack <= 0) continue;
+            double radius = tc.gamma * speedBound * ageUnwarp(slack, params_.age.delta);
+            double radius2 = radius * radius;
             // Quick reject: the box around the chain's kept segments is out of reach.
             Vec3 out{std::max({tc.lower.x - pt.x, 0.0, pt.x - tc.upper.x}),
                      std::max({tc.lower.y - pt.y, 0.0, pt.y - tc.upper.y}),
                      std::max({tc.lower.z - pt.z, 0.0, pt.z - tc.upper.z})};
             if (dot(out, out) > radius2) continue;
-            Best best;
-            for (uint32_t k = tc.begin; k < tc.end; ++k) {
-                uint32_t id = scratch.keptSegments[k];
-                double d2 = project(segments_[id], pt).distance2;
-                if (d2 <= radius2 && d2 < best.distance2) best = {static_cast<int32_t>(id), d2};
-            }
-            if (best.segment == kNone) continue;
+            uint32_t nearest =
+                scratch.keptSegments.id(scratch.keptSegments.nearest(tc.begin, tc.end, pt));
+            Best best{static_cast<int32_t>(nearest), project(segments_[nearest], pt).distance2};
+            if (best.distance2 > radius2) continue;
             // The path through the nearest segment cannot come in under reach x T1: skip it
             // before paying for the full path time.
             const FieldSegment& bs = segments_[static_cast<uint32_t>(best.segment)];
-            if (bs.birthBound + ageWarp(std::sqrt(best.distance2) / (bs.gammaBound * speedBound),
-                                        params_.age.delta) >=
-                reach * t1)
-                continue;
+            double bound =
+                bs.birthBound + ageWarp(std::sqrt(best.distance2) / (bs.gammaBound * speedBound),
+                                        params_.age.delta);
+            if (dieback(bound, bs.deathBound, bs.diebackBound) >= reach * t1 * sinAlpha) continue;
             PathTime bp = chainPathTime(static_cast<uint32_t>(best.segment), pt);
-            if (junctionReachWeight(bp.T, t1, reach) <= 0) continue;
+            if (junctionReachWeight(bp.T / sinAlpha, t1, reach) <= 0) continue;
             // A dead knot: the branch had died before the trunk's bark reached P, so P lies in
             // the dead stub that the trunk encased.
             bool dead = t1 > segments_[static_cast<uint32_t>(best.segment)].deathTime;
@@ -300,7 +298,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         double trunkTerm = powP(m / t1, p);
         double sum = trunkTerm, dead = 0, strongest = 0;
         for (const auto& t : terms) {
-            double u = junctionReachWeight(t.time, t1, params_.junction.reach) *
+            double u = junctionReachWeight(t.time / t.sinAlpha, t1, params_.junction.reach) *
                        powP(m * t.sinAlpha / t.time, p);
             sum += u;
             if (t.dead) dead += u;

@@ -8,7 +8,8 @@
 /// eq. 5 (our reconstruction) taken over all branch paths at once:
 ///   T = (T1^-p + sum_c w_c (T_c / sin alpha_c)^-p)^(-1/p),
 /// alpha_c measured from the plane through the branch's start perpendicular to it, w_c the
-/// reach cut-off weight. With one branch this is exactly eq. 5.
+/// reach cut-off weight of T_c / sin alpha_c (junctionReachWeight). With one branch and
+/// w_c = 1 this is exactly eq. 5.
 ///
 /// Points come in batches (tiles of a bake): one set of candidate segments is gathered from the
 /// index for the whole batch and every point is then evaluated against it. The answer for a
@@ -22,6 +23,7 @@
 #include "grain/field_segment.h"
 #include "grain/grain_params.h"
 #include "grain/growth_terms.h"
+#include "grain/segment_batch.h"
 #include "skeleton/skeleton_index.h"
 
 namespace nenrin {
@@ -54,7 +56,7 @@ struct GrowthScratch {
         Vec3 lower, upper;      ///< bounding box of the kept segments
     };
     std::vector<TileChain> tileChains;
-    std::vector<uint32_t> keptSegments;
+    SegmentBatch keptSegments;
     std::vector<double> centreDistances;
     struct ChainTerm {
         uint32_t chain;

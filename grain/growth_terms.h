@@ -76,11 +76,13 @@ inline double smoothstep(double e0, double e1, double x) {
     return t * t * (3 - 2 * t);
 }
 
-/// Cut-off weight of a branch path in the junction blend: 1 while its time is below half of
-/// reach x the trunk time, fading smoothly to 0 at reach x the trunk time. Keeps the blend
-/// continuous while letting far branches be skipped (see GrowthField).
-inline double junctionReachWeight(double branchTime, double trunkTime, double reach) {
-    return 1.0 - smoothstep(0.5, 1.0, branchTime / (reach * std::max(trunkTime, 1e-9)));
+/// Cut-off weight of a branch path in the junction blend, from its effective time
+/// T_c / sin(alpha) (the quantity eq. 5 compares with T1): 1 below half of reach x the trunk
+/// time, fading smoothly to 0 at reach x the trunk time. With p = 2 and reach = 4 a term is
+/// dropped where it would lower T by less than 3 %: the blend stays continuous while far or
+/// grazing branches cost nothing (see GrowthField).
+inline double junctionReachWeight(double effectiveBranchTime, double trunkTime, double reach) {
+    return 1.0 - smoothstep(0.5, 1.0, effectiveBranchTime / (reach * std::max(trunkTime, 1e-9)));
 }
 
 /// Eq. 6: late-wood fraction E = sin^n((pi/2) u), u = frac(T): 0 in early wood at the start of

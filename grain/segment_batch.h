@@ -1,0 +1,73 @@
+#pragma once
+/// The segments kept for one tile, laid out as float arrays relative to the tile centre, so
+/// "which of these is nearest to p" runs as a vectorised loop. Float only picks the nearest;
+/// every distance that enters a growth time is recomputed in double.
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "util/vec3.h"
+
+namespace nenrin {
+
+class SegmentBatch {
+public:
+    void reset(const Vec3& origin) {
+        origin_ = origin;
+        for (auto* v : {&ax_, &ay_, &az_, &dx_, &dy_, &dz_, &inv_}) v->clear();
+        ids_.clear();
+    }
+    void push(const Vec3& a, const Vec3& ab, double invLength2, uint32_t id) {
+        Vec3 r = a - origin_;
+        ax_.push_back(static_cast<float>(r.x));
+        ay_.push_back(static_cast<float>(r.y));
+        az_.push_back(static_cast<float>(r.z));
+        dx_.push_back(static_cast<float>(ab.x));
+        dy_.push_back(static_cast<float>(ab.y));
+        dz_.push_back(static_cast<float>(ab.z));
+        inv_.push_back(static_cast<float>(invLength2));
+        ids_.push_back(id);
+    }
+    uint32_t size() const { return static_cast<uint32_t>(ids_.size()); }
+    void truncate(uint32_t n) {
+        for (auto* v : {&ax_, &ay_, &az_, &dx_, &dy_, &dz_, &inv_}) v->resize(n);
+        ids_.resize(n);
+    }
+    uint32_t id(uint32_t i) const { return ids_[i]; }
+
+    /// Index in [begin, end) of the segment nearest to p (the first of equals).
+    uint32_t nearest(uint32_t begin, uint32_t end, const Vec3& p) {
+        const float px = static_cast<float>(p.x - origin_.x);
+        const float py = static_cast<float>(p.y - origin_.y);
+        const float pz = static_cast<float>(p.z - origin_.z);
+        distances_.resize(end - begin);
+        float* __restrict d = distances_.data();
+        const float* __restrict ax = ax_.data() + begin;
+        const float* __restrict ay = ay_.data() + begin;
+        const float* __restrict az = az_.data() + begin;
+        const float* __restrict dx = dx_.data() + begin;
+        const float* __restrict dy = dy_.data() + begin;
+        const float* __restrict dz = dz_.data() + begin;
+        const float* __restrict inv = inv_.data() + begin;
+        const uint32_t n = end - begin;
+        for (uint32_t k = 0; k < n; ++k) {  // branch-free: the compiler vectorises it
+            float qx = px - ax[k], qy = py - ay[k], qz = pz - az[k];
+            float t = (qx * dx[k] + qy * dy[k] + qz * dz[k]) * inv[k];
+            t = std::max(0.f, std::min(1.f, t));
+            float rx = qx - dx[k] * t, ry = qy - dy[k] * t, rz = qz - dz[k] * t;
+            d[k] = rx * rx + ry * ry + rz * rz;
+        }
+        uint32_t best = 0;
+        for (uint32_t k = 1; k < n; ++k)
+            if (d[k] < d[best]) best = k;
+        return begin + best;
+    }
+
+private:
+    Vec3 origin_;
+    std::vector<float> ax_, ay_, az_, dx_, dy_, dz_, inv_, distances_;
+    std::vector<uint32_t> ids_;
+};
+
+}  // namespace nenrin
