@@ -283,7 +283,11 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
             if (junctionReachWeight(bp.T / sinAlpha, t1, reach) <= 0) continue;
             // A dead knot: the branch had died before the trunk's bark reached P, so P lies in
             // the dead stub that the trunk encased.
-            bool dead = t1 > segments_[static_cast<uint32_t>(best.segment)].deathTime;
+            // The change from intergrown to encased knot is sharp in real wood; one year of
+            // trunk growth keeps it from aliasing.
+            double deathTime = segments_[static_cast<uint32_t>(best.segment)].deathTime;
+            double dead =
+                std::isfinite(deathTime) ? smoothstep(deathTime - 0.5, deathTime + 0.5, t1) : 0.0;
             terms.push_back({tc.chain, bp.T, sinAlpha, bp.distance, dead});
         }
         if (terms.empty()) continue;
@@ -301,7 +305,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
             double u = junctionReachWeight(t.time / t.sinAlpha, t1, params_.junction.reach) *
                        powP(m * t.sinAlpha / t.time, p);
             sum += u;
-            if (t.dead) dead += u;
+            dead += t.dead * u;
             if (u > strongest) {
                 strongest = u;
                 g.knotChain = static_cast<int32_t>(t.chain);

@@ -61,7 +61,7 @@ struct GrowthScratch {
     struct ChainTerm {
         uint32_t chain;
         double time, sinAlpha, distance;
-        bool dead;
+        double dead;  ///< 0 living, 1 dead when the trunk reached P
     };
     std::vector<ChainTerm> terms;
 };
@@ -85,7 +85,8 @@ public:
         double T, Ta, Tb;
         Vec3 axisPoint, axisDirection;
         double distance;
-        bool dead;  ///< the path time is past the segment's dieback time
+        double dead;  ///< 0 living, 1 dead when the trunk reached P  ///< the path time is past the
+                      ///< segment's dieback time
     };
     PathTime chainPathTime(uint32_t segment, const Vec3& p) const;
 

@@ -79,14 +79,17 @@ double microStructure(const Vec3& p, double cellSize, uint64_t seed) {
 }
 
 double knotEmphasis(double knotShare, double deadShare, const ColourParams& c) {
-    double live = std::max(knotShare - deadShare, 0.0);
-    double inside = c.knotDarkening * smoothstep(0.45, 0.75, live) +
-                    c.deadKnotDarkening * smoothstep(0.45, 0.75, deadShare);
-    // The bark of a dead branch is encased by the trunk: a thin dark line where the dead
-    // branch and the trunk meet, i.e. where the dead share crosses one half.
-    double x = (deadShare - 0.5) / 0.12;
-    double rim = c.deadKnotRim * std::exp(-x * x) * smoothstep(0.05, 0.3, deadShare);
-    return std::clamp(inside + rim, 0.0, 0.95);
+    // Darkening follows the knot share; how much of it is the dead-knot kind follows the
+    // fraction of the knot that is dead, so the live/dead change along a branch (where the
+    // trunk reached it after its death) shifts the tone without drawing an edge.
+    double inside = smoothstep(0.45, 0.75, knotShare);
+    double deadFraction = knotShare > 0 ? std::clamp(deadShare / knotShare, 0.0, 1.0) : 0.0;
+    double darkening = inside * mix(c.knotDarkening, c.deadKnotDarkening, deadFraction);
+    // The bark of a dead branch is encased by the trunk: a thin dark line on the knot's
+    // boundary (knot share one half), only where the knot is dead.
+    double x = (knotShare - 0.5) / 0.1;
+    double rim = c.deadKnotRim * deadFraction * std::exp(-x * x);
+    return std::clamp(darkening + rim, 0.0, 0.95);
 }
 
 }  // namespace nenrin

@@ -70,6 +70,9 @@ inline double junctionBlend(double trunkTime, double branchTime, double sinAlpha
     return m * std::pow(s, -1.0 / p);
 }
 
+/// Linear interpolation from a (t = 0) to b (t = 1).
+inline double mix(double a, double b, double t) { return a + (b - a) * t; }
+
 /// Smooth step from 0 at e0 to 1 at e1.
 inline double smoothstep(double e0, double e1, double x) {
     double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
@@ -121,8 +124,9 @@ double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elon
 /// at p (multiply by the amplitude).
 double microStructure(const Vec3& p, double cellSize, uint64_t seed);
 
-/// Knot emphasis (4.4): relative darkening from the living and dead knot shares (0..1) of a
-/// sample: inside a knot, plus a dark rim of bark around dead (encased) knots.
+/// Knot emphasis (4.4): relative darkening from the knot share and the dead share (0..1) of a
+/// sample: inside a knot (living and dead knots darken by different amounts), plus a dark
+/// rim of bark around dead (encased) knots.
 double knotEmphasis(double knotShare, double deadShare, const ColourParams& colour);
 
 }  // namespace nenrin
