@@ -190,21 +190,40 @@ GrowthSample GrowthField::evaluate(const Vec3& p) const {
     return out;
 }
 
+namespace {
+/// Points per chunk: the unit of candidate pruning inside a batch (an 8 x 8 tile).
+constexpr size_t kChunk = 64;
+
+struct Box {
+    Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+    void add(const Vec3& p) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    Vec3 centre() const { return (lo + hi) * 0.5; }
+    double halfDiagonal() const { return 0.5 * length(hi - lo); }
+};
+
+Box boxOf(std::span<const Vec3> points) {
+    Box b;
+    for (const Vec3& p : points) b.add(p);
+    return b;
+}
+}  // namespace
+
 void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSample> out,
                                 GrowthScratch& scratch) const {
+    // One gather from the index for the whole batch; then, chunk by chunk (consecutive runs of
+    // kChunk points, which callers keep spatially compact), exact pruning to what can matter
+    // for that chunk, and the per-point work.
     const size_t n = input.size();
     if (n == 0) return;
-    const Skeleton& sk = skeleton();
     auto& pts = scratch.points;
     pts.resize(n);
-    Vec3 lo{kInf, kInf, kInf}, hi = -lo;
-    for (size_t i = 0; i < n; ++i) {
-        pts[i] = input[i] + swayDisplacement(input[i], sway_);
-        lo = {std::min(lo.x, pts[i].x), std::min(lo.y, pts[i].y), std::min(lo.z, pts[i].z)};
-        hi = {std::max(hi.x, pts[i].x), std::max(hi.y, pts[i].y), std::max(hi.z, pts[i].z)};
-    }
-    const Vec3 centre = (lo + hi) * 0.5;
-    const double halfDiagonal = 0.5 * length(hi - lo);
+    for (size_t i = 0; i < n; ++i) pts[i] = input[i] + swayDisplacement(input[i], sway_);
+    const Box batch = boxOf(pts);
+    const Vec3 centre = batch.centre();
+    const double halfDiagonal = batch.halfDiagonal();
 
     // Trunk: every point of the batch is within d0 + h of some trunk segment, so its nearest
     // trunk segment is within d0 + 2h of the centre.
@@ -215,22 +234,41 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     std::sort(trunkCands.begin(), trunkCands.end());
 
     double maxTrunkTime = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const Vec3& p = pts[i];
-        Best best;
+    for (size_t c0 = 0; c0 < n; c0 += kChunk) {
+        const size_t c1 = std::min(n, c0 + kChunk);
+        const Box chunk = boxOf({pts.data() + c0, c1 - c0});
+        // The same argument per chunk: keep the trunk candidates that can be some point's
+        // nearest (sorted order is kept, so ties still go to the smaller id).
+        const Vec3 cc = chunk.centre();
+        const double ch = chunk.halfDiagonal();
+        auto& dist = scratch.centreDistances;
+        dist.clear();
+        double nearest = kInf;
         for (uint32_t id : trunkCands) {
-            double d2 = project(segments_[id], p).distance2;
-            if (d2 < best.distance2) best = {static_cast<int32_t>(id), d2};
+            dist.push_back(std::sqrt(project(segments_[id], cc).distance2));
+            nearest = std::min(nearest, dist.back());
         }
-        PathTime trunk = chainPathTime(static_cast<uint32_t>(best.segment), p);
-        GrowthSample& g = out[i];
-        g = GrowthSample{};
-        g.T = g.trunkTime = trunk.T;
-        g.Ta = trunk.Ta;
-        g.Tb = trunk.Tb;
-        g.axisPoint = trunk.axisPoint;
-        g.axisDirection = trunk.axisDirection;
-        maxTrunkTime = std::max(maxTrunkTime, trunk.T);
+        auto& kept = scratch.chunkTrunk;
+        kept.clear();
+        for (size_t k = 0; k < trunkCands.size(); ++k)
+            if (dist[k] <= nearest + 2 * ch + 1e-9) kept.push_back(trunkCands[k]);
+        for (size_t i = c0; i < c1; ++i) {
+            const Vec3& p = pts[i];
+            Best best;
+            for (uint32_t id : kept) {
+                double d2 = project(segments_[id], p).distance2;
+                if (d2 < best.distance2) best = {static_cast<int32_t>(id), d2};
+            }
+            PathTime trunk = chainPathTime(static_cast<uint32_t>(best.segment), p);
+            GrowthSample& g = out[i];
+            g = GrowthSample{};
+            g.T = g.trunkTime = trunk.T;
+            g.Ta = trunk.Ta;
+            g.Tb = trunk.Tb;
+            g.axisPoint = trunk.axisPoint;
+            g.axisDirection = trunk.axisDirection;
+            maxTrunkTime = std::max(maxTrunkTime, trunk.T);
+        }
     }
     if (index_->branches().size() == 0) return;
 
@@ -240,8 +278,20 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
                               branchCands);
     if (branchCands.empty()) return;
     std::sort(branchCands.begin(), branchCands.end());
-    prepareTileChains(scratch, lo, hi, halfDiagonal, maxTrunkTime);
+    for (size_t c0 = 0; c0 < n; c0 += kChunk) {
+        const size_t c1 = std::min(n, c0 + kChunk);
+        const Box chunk = boxOf({pts.data() + c0, c1 - c0});
+        double chunkTrunkTime = 0;
+        for (size_t i = c0; i < c1; ++i)
+            chunkTrunkTime = std::max(chunkTrunkTime, out[i].trunkTime);
+        prepareTileChains(scratch, chunk.lo, chunk.hi, chunk.halfDiagonal(), chunkTrunkTime);
+        evaluateBranches({pts.data() + c0, c1 - c0}, out.subspan(c0, c1 - c0), scratch);
+    }
+}
 
+void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSample> out,
+                                   GrowthScratch& scratch) const {
+    const size_t n = pts.size();
     const double p = params_.junction.p;
     const double reach = params_.junction.reach;
     const double speedBound = params_.radialSpeed * maxSpeed_ / (1 - params_.sway.radialJitter);
@@ -251,6 +301,8 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         const double t1 = g.trunkTime;
         auto& terms = scratch.terms;
         terms.clear();
+        if (scratch.tileChains.empty()) continue;
+        scratch.keptSegments.measureFrom(pt);
         for (const auto& tc : scratch.tileChains) {
             // alpha: angle between QP and the plane F through the branch start Q,
             // perpendicular to the branch (eq. 5). Behind F the branch does not count.
@@ -269,7 +321,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
                      std::max({tc.lower.z - pt.z, 0.0, pt.z - tc.upper.z})};
             if (dot(out, out) > radius2) continue;
             uint32_t nearest =
-                scratch.keptSegments.id(scratch.keptSegments.nearest(tc.begin, tc.end, pt));
+                scratch.keptSegments.id(scratch.keptSegments.nearest(tc.begin, tc.end));
             Best best{static_cast<int32_t>(nearest), project(segments_[nearest], pt).distance2};
             if (best.distance2 > radius2) continue;
             // The path through the nearest segment cannot come in under reach x T1: skip it

@@ -46,6 +46,7 @@ struct GrowthScratch {
     std::vector<Vec3> points;
     std::vector<uint32_t> trunkCandidates;
     std::vector<uint32_t> branchCandidates;
+    std::vector<uint32_t> chunkTrunk;  ///< trunk candidates kept for the current chunk
     /// A branch chain near the current tile, with the segments that may matter for it.
     struct TileChain {
         uint32_t chain;
@@ -75,7 +76,9 @@ public:
     const Skeleton& skeleton() const { return index_->skeleton(); }
 
     GrowthSample evaluate(const Vec3& p) const;
-    /// Evaluates a batch; spatially coherent batches (a tile) are much faster than scattered ones.
+    /// Evaluates a batch. Spatially coherent batches are much faster than scattered ones: the
+    /// index is queried once per batch and candidates are pruned per run of 64 consecutive
+    /// points, so order points in compact groups of 64 (8 x 8 tiles) within larger batches.
     void evaluateBatch(std::span<const Vec3> points, std::span<GrowthSample> out,
                        GrowthScratch& scratch) const;
 
@@ -93,6 +96,8 @@ public:
 private:
     PathTime segmentPathTime(uint32_t segment, const Vec3& p, double t) const;
     double branchSearchRadius(double trunkTime) const;
+    void evaluateBranches(std::span<const Vec3> points, std::span<GrowthSample> out,
+                          GrowthScratch& scratch) const;
     void prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
                            double halfDiagonal, double maxTrunkTime) const;
 

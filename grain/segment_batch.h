@@ -36,21 +36,22 @@ public:
     }
     uint32_t id(uint32_t i) const { return ids_[i]; }
 
-    /// Index in [begin, end) of the segment nearest to p (the first of equals).
-    uint32_t nearest(uint32_t begin, uint32_t end, const Vec3& p) {
+    /// Computes the squared distance from p to every segment of the batch, in one vectorised
+    /// pass (cheaper than many short per-chain loops); then call nearest() per range.
+    void measureFrom(const Vec3& p) {
         const float px = static_cast<float>(p.x - origin_.x);
         const float py = static_cast<float>(p.y - origin_.y);
         const float pz = static_cast<float>(p.z - origin_.z);
-        distances_.resize(end - begin);
+        const uint32_t n = size();
+        distances_.resize(n);
         float* __restrict d = distances_.data();
-        const float* __restrict ax = ax_.data() + begin;
-        const float* __restrict ay = ay_.data() + begin;
-        const float* __restrict az = az_.data() + begin;
-        const float* __restrict dx = dx_.data() + begin;
-        const float* __restrict dy = dy_.data() + begin;
-        const float* __restrict dz = dz_.data() + begin;
-        const float* __restrict inv = inv_.data() + begin;
-        const uint32_t n = end - begin;
+        const float* __restrict ax = ax_.data();
+        const float* __restrict ay = ay_.data();
+        const float* __restrict az = az_.data();
+        const float* __restrict dx = dx_.data();
+        const float* __restrict dy = dy_.data();
+        const float* __restrict dz = dz_.data();
+        const float* __restrict inv = inv_.data();
         for (uint32_t k = 0; k < n; ++k) {  // branch-free: the compiler vectorises it
             float qx = px - ax[k], qy = py - ay[k], qz = pz - az[k];
             float t = (qx * dx[k] + qy * dy[k] + qz * dz[k]) * inv[k];
@@ -58,10 +59,16 @@ public:
             float rx = qx - dx[k] * t, ry = qy - dy[k] * t, rz = qz - dz[k] * t;
             d[k] = rx * rx + ry * ry + rz * rz;
         }
-        uint32_t best = 0;
-        for (uint32_t k = 1; k < n; ++k)
+    }
+
+    /// Index in [begin, end) of the segment nearest to the point last measured from (the first
+    /// of equals).
+    uint32_t nearest(uint32_t begin, uint32_t end) const {
+        const float* d = distances_.data();
+        uint32_t best = begin;
+        for (uint32_t k = begin + 1; k < end; ++k)
             if (d[k] < d[best]) best = k;
-        return begin + best;
+        return best;
     }
 
 private:
