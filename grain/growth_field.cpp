@@ -31,6 +31,16 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
         throw std::invalid_argument("GrowthField: the skeleton has no trunk");
     sway_ = makeSwayWaves(params_.sway);
     segments_ = flattenSegments(index.skeleton());
+    const Skeleton& sk = index.skeleton();
+    for (const SkeletonChain& c : sk.chains()) {
+        const FieldSegment& first = segments_[c.firstSegment];
+        ChainFrame f{first.a, first.axis, kInf, 0};
+        for (uint32_t i = c.firstSegment; i < c.firstSegment + c.segmentCount; ++i) {
+            f.birthBound = std::min(f.birthBound, segments_[i].birthBound);
+            f.gammaBound = std::max(f.gammaBound, segments_[i].gammaBound);
+        }
+        chainFrames_.push_back(f);
+    }
     maxGamma_ = index.skeleton().maxBranchGamma();
     maxSpeed_ = (1 + params_.taper.nu) * (1 + params_.direction.strength);
 }
@@ -118,47 +128,56 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
                                     double halfDiagonal, double maxTrunkTime) const {
     // Per chain near the tile, keep only what can matter for some point of the tile; every
     // test here is exact (a bound over the whole box), so results do not depend on tiling.
-    const Skeleton& sk = skeleton();
+    // Distances from the centre come from one float pass; a margin covers float rounding.
     const Vec3 centre = (lo + hi) * 0.5;
     const auto& cands = scratch.branchCandidates;
     auto& chains = scratch.tileChains;
     auto& kept = scratch.keptSegments;
-    auto& dist = scratch.centreDistances;
     chains.clear();
     kept.reset(centre);
+    scratch.candidates.measureFrom(centre);
+    const float* d2 = scratch.candidates.distances();
+    const double reachTime = params_.junction.reach * maxTrunkTime;
     const double speedBound = params_.radialSpeed * maxSpeed_ / (1 - params_.sway.radialJitter);
     size_t k = 0;
     while (k < cands.size()) {
         const uint32_t chain = segments_[cands[k]].chain;
-        size_t begin = k;
-        dist.clear();
+        const size_t begin = k;
         double nearest = kInf;
-        for (; k < cands.size() && segments_[cands[k]].chain == chain; ++k) {
-            dist.push_back(std::sqrt(project(segments_[cands[k]], centre).distance2));
-            nearest = std::min(nearest, dist.back());
-        }
+        for (; k < cands.size() && segments_[cands[k]].chain == chain; ++k)
+            nearest = std::min(nearest, static_cast<double>(d2[k]));
+        nearest = std::sqrt(nearest);
+        const double margin = 1e-5 + 2e-6 * nearest;
         // 1. The whole box behind the plane F of the branch: sin(alpha) <= 0 everywhere.
-        const SkeletonChain& c = sk.chain(chain);
-        const SkeletonSegment& first = sk.segment(c.firstSegment);
-        GrowthScratch::TileChain tc;
-        tc.chain = chain;
-        tc.start = sk.start(first);
-        tc.direction = normalize(sk.end(first) - tc.start);
+        const ChainFrame& frame = chainFrames_[chain];
         bool anyAhead = false;
         for (int corner = 0; corner < 8 && !anyAhead; ++corner) {
             Vec3 x{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
-            anyAhead = dot(x - tc.start, tc.direction) > 0;
+            anyAhead = dot(x - frame.start, frame.direction) > 0;
         }
         if (!anyAhead) continue;
-        // 2. Segments that cannot be any point's nearest: farther from the centre than the
+        // 2. The chain's path time over the whole box is past reach x T1 of every point
+        //    (first with bounds over the whole chain: cheap, then with the kept segments).
+        const double closest = std::max(0.0, nearest - margin - halfDiagonal);
+        auto timeBound = [&](double birth, double gamma) {
+            return birth + ageWarp(closest / (gamma * speedBound), params_.age.delta);
+        };
+        if (timeBound(frame.birthBound, frame.gammaBound) >= reachTime) continue;
+        // 3. Segments that cannot be any point's nearest: farther from the centre than the
         //    nearest one plus the box diameter.
-        tc.begin = static_cast<uint32_t>(kept.size());
+        GrowthScratch::TileChain tc;
+        tc.chain = chain;
+        tc.start = frame.start;
+        tc.direction = frame.direction;
+        tc.begin = kept.size();
         tc.lower = {kInf, kInf, kInf};
         tc.upper = -tc.lower;
         tc.gamma = 0;
         tc.birthBound = kInf;
+        const double keep = nearest + 2 * halfDiagonal + 2 * margin;
+        const double keep2 = keep * keep;
         for (size_t j = begin; j < k; ++j) {
-            if (dist[j - begin] > nearest + 2 * halfDiagonal) continue;
+            if (d2[j] > keep2) continue;
             const FieldSegment& s = segments_[cands[j]];
             kept.push(s.a, s.ab, s.invLength2, cands[j]);
             tc.lower = {std::min({tc.lower.x, s.a.x, s.a.x + s.ab.x}),
@@ -170,12 +189,8 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
             tc.gamma = std::max(tc.gamma, s.gammaBound);
             tc.birthBound = std::min(tc.birthBound, s.birthBound);
         }
-        tc.end = static_cast<uint32_t>(kept.size());
-        // 3. The chain's path time over the whole box is past reach x T1 of every point.
-        double closest = std::max(0.0, nearest - halfDiagonal);
-        double lowerBound =
-            tc.birthBound + ageWarp(closest / (tc.gamma * speedBound), params_.age.delta);
-        if (lowerBound >= params_.junction.reach * maxTrunkTime) {
+        tc.end = kept.size();
+        if (timeBound(tc.birthBound, tc.gamma) >= reachTime) {
             kept.truncate(tc.begin);
             continue;
         }
@@ -278,6 +293,11 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
                               branchCands);
     if (branchCands.empty()) return;
     std::sort(branchCands.begin(), branchCands.end());
+    scratch.candidates.reset(centre);
+    for (uint32_t id : branchCands) {
+        const FieldSegment& s = segments_[id];
+        scratch.candidates.push(s.a, s.ab, s.invLength2, id);
+    }
     for (size_t c0 = 0; c0 < n; c0 += kChunk) {
         const size_t c1 = std::min(n, c0 + kChunk);
         const Box chunk = boxOf({pts.data() + c0, c1 - c0});

@@ -58,6 +58,7 @@ struct GrowthScratch {
     };
     std::vector<TileChain> tileChains;
     SegmentBatch keptSegments;
+    SegmentBatch candidates;  ///< all branch candidates of the batch
     std::vector<double> centreDistances;
     struct ChainTerm {
         uint32_t chain;
@@ -105,7 +106,13 @@ private:
     GrainParams params_;
     SwayWaves sway_;
     std::vector<FieldSegment> segments_;  ///< the skeleton's segments, flattened
-    double maxGamma_;                     ///< largest branch gamma of the skeleton
+    /// Per chain: Q and the normal of plane F (eq. 5), and bounds over all its segments.
+    struct ChainFrame {
+        Vec3 start, direction;
+        double birthBound, gammaBound;
+    };
+    std::vector<ChainFrame> chainFrames_;
+    double maxGamma_;  ///< largest branch gamma of the skeleton
     double maxSpeed_;  ///< upper bound of the radial speed factor (taper x direction)
 };
 

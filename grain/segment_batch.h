@@ -35,6 +35,8 @@ public:
         ids_.resize(n);
     }
     uint32_t id(uint32_t i) const { return ids_[i]; }
+    /// The squared distances of the last measureFrom(), one per segment.
+    const float* distances() const { return distances_.data(); }
 
     /// Computes the squared distance from p to every segment of the batch, in one vectorised
     /// pass (cheaper than many short per-chain loops); then call nearest() per range.
