@@ -30,7 +30,7 @@ std::pair<double, double> parseSizeMetres(const std::string& text, const std::st
     std::string t = text;
     if (!t.empty() && t.back() == 'm') t.pop_back();
     auto x = t.find('x');
-    double w, h;
+    double w = 0, h = 0;
     if (x == std::string::npos || !parseDouble(t.substr(0, x), w) ||
         !parseDouble(t.substr(x + 1), h))
         throw optionError(option, fmt::format("expected WIDTHxHEIGHT in metres such as 0.4x0.3m, "
@@ -43,7 +43,7 @@ std::pair<double, double> parseSizeMetres(const std::string& text, const std::st
 
 std::pair<int, int> parseResolution(const std::string& text, const std::string& option, int cap) {
     auto x = text.find('x');
-    double w, h;
+    double w = 0, h = 0;
     if (x == std::string::npos || !parseDouble(text.substr(0, x), w) ||
         !parseDouble(text.substr(x + 1), h) || w != std::floor(w) || h != std::floor(h))
         throw optionError(option,
