@@ -137,7 +137,7 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
     kept.reset(centre);
     scratch.candidates.measureFrom(centre);
     const float* d2 = scratch.candidates.distances();
-    const double reachTime = params_.junction.reach * maxTrunkTime;
+    const double reachTrunkTime = params_.junction.reach * maxTrunkTime;
     const double speedBound = params_.radialSpeed * maxSpeed_ / (1 - params_.sway.radialJitter);
     size_t k = 0;
     while (k < cands.size()) {
@@ -156,8 +156,19 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
             anyAhead = dot(x - frame.start, frame.direction) > 0;
         }
         if (!anyAhead) continue;
-        // 2. The chain's path time over the whole box is past reach x T1 of every point
-        //    (first with bounds over the whole chain: cheap, then with the kept segments).
+        // The largest sin(alpha) over the box (over its bounding ball, seen from Q): the
+        // blend compares T_c / sin(alpha) with T1.
+        Vec3 toCentre = centre - frame.start;
+        double dc = length(toCentre);
+        double sinAlphaMax = 1;
+        if (dc > halfDiagonal) {
+            double angle = std::acos(std::clamp(dot(toCentre, frame.direction) / dc, -1.0, 1.0));
+            double spread = std::asin(std::min(1.0, halfDiagonal / dc * (1 + 1e-9) + 1e-12));
+            sinAlphaMax = angle - spread > 0 ? std::cos(angle - spread) : 1.0;
+        }
+        const double reachTime = reachTrunkTime * sinAlphaMax;
+        // 2. The chain's path time over the whole box is past reach x T1 x sin(alpha) of every
+        //    point (first with bounds over the whole chain: cheap, then with the kept segments).
         const double closest = std::max(0.0, nearest - margin - halfDiagonal);
         auto timeBound = [&](double birth, double gamma) {
             return birth + ageWarp(closest / (gamma * speedBound), params_.age.delta);
