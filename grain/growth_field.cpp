@@ -351,8 +351,10 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
                      std::max({tc.lower.y - pt.y, 0.0, pt.y - tc.upper.y}),
                      std::max({tc.lower.z - pt.z, 0.0, pt.z - tc.upper.z})};
             if (dot(out, out) > radius2) continue;
-            uint32_t nearest =
-                scratch.keptSegments.id(scratch.keptSegments.nearest(tc.begin, tc.end));
+            const auto& kept = scratch.keptSegments;
+            uint32_t nearest = kept.id(kept.nearest(tc.begin, tc.end, [&](uint32_t k) {
+                return project(segments_[kept.id(k)], pt).distance2;
+            }));
             Best best{static_cast<int32_t>(nearest), project(segments_[nearest], pt).distance2};
             if (best.distance2 > radius2) continue;
             // The path through the nearest segment cannot come in under reach x T1: skip it

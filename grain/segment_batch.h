@@ -63,13 +63,38 @@ public:
         }
     }
 
-    /// Index in [begin, end) of the segment nearest to the point last measured from (the first
-    /// of equals).
-    uint32_t nearest(uint32_t begin, uint32_t end) const {
+    /// Index in [begin, end) of the segment nearest to the point last measured from. Float
+    /// rounding depends on the batch's origin, so near-ties are settled by `exact(index)`
+    /// (the squared distance in double; equal distances go to the first index): the answer
+    /// never depends on how points were batched.
+    template <class ExactDistance2>
+    uint32_t nearest(uint32_t begin, uint32_t end, ExactDistance2&& exact) const {
         const float* d = distances_.data();
-        uint32_t best = begin;
+        uint32_t first = begin;
         for (uint32_t k = begin + 1; k < end; ++k)
-            if (d[k] < d[best]) best = k;
+            if (d[k] < d[first]) first = k;
+        const float limit = d[first] * (1 + 1e-4f) + 1e-8f;
+        uint32_t best = first;
+        double bestDistance2 = -1;  // computed only if there is a near-tie
+        for (uint32_t k = begin; k < end; ++k) {
+            if (k == first || d[k] > limit) continue;
+            if (bestDistance2 < 0) {
+                best = std::min(first, k);
+                bestDistance2 = exact(best);
+                uint32_t other = std::max(first, k);
+                double e = exact(other);
+                if (e < bestDistance2) {
+                    best = other;
+                    bestDistance2 = e;
+                }
+                continue;
+            }
+            double e = exact(k);
+            if (e < bestDistance2 || (e == bestDistance2 && k < best)) {
+                best = k;
+                bestDistance2 = e;
+            }
+        }
         return best;
     }
 
