@@ -16,6 +16,15 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double powP(double x, double p) { return p == 2.0 ? x * x : std::pow(x, p); }
 
+/// A lower bound of dieback(t, deathTime, eps) without pow(): (t / Tlim)^eps >= (t / Tlim)^n
+/// for n = floor(eps) since t / Tlim >= 1 there.
+double diebackLowerBound(double t, double deathTime, double eps) {
+    if (!(t > deathTime)) return t;
+    double x = t / deathTime, factor = 1;
+    for (int n = static_cast<int>(std::min(eps, 8.0)); n > 0; --n) factor *= x;
+    return t * factor;
+}
+
 /// Nearest of the candidate segments (sorted by id) to p, within maxDistance2. Ties go to the
 /// smaller id, like the indexes.
 struct Best {
@@ -363,7 +372,8 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
             double bound =
                 bs.birthBound + ageWarp(std::sqrt(best.distance2) / (bs.gammaBound * speedBound),
                                         params_.age.delta);
-            if (dieback(bound, bs.deathBound, bs.diebackBound) >= reach * t1 * sinAlpha) continue;
+            if (diebackLowerBound(bound, bs.deathBound, bs.diebackBound) >= reach * t1 * sinAlpha)
+                continue;
             PathTime bp = chainPathTime(static_cast<uint32_t>(best.segment), pt);
             if (junctionReachWeight(bp.T / sinAlpha, t1, reach) <= 0) continue;
             // A dead knot: the branch had died before the trunk's bark reached P, so P lies in

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "util/vec3.h"
@@ -70,27 +71,26 @@ public:
     template <class ExactDistance2>
     uint32_t nearest(uint32_t begin, uint32_t end, ExactDistance2&& exact) const {
         const float* d = distances_.data();
+        // One pass for the smallest and second smallest distance: usually they are far apart
+        // and the float answer stands.
         uint32_t first = begin;
-        for (uint32_t k = begin + 1; k < end; ++k)
-            if (d[k] < d[first]) first = k;
-        const float limit = d[first] * (1 + 1e-4f) + 1e-8f;
-        uint32_t best = first;
-        double bestDistance2 = -1;  // computed only if there is a near-tie
-        for (uint32_t k = begin; k < end; ++k) {
-            if (k == first || d[k] > limit) continue;
-            if (bestDistance2 < 0) {
-                best = std::min(first, k);
-                bestDistance2 = exact(best);
-                uint32_t other = std::max(first, k);
-                double e = exact(other);
-                if (e < bestDistance2) {
-                    best = other;
-                    bestDistance2 = e;
-                }
-                continue;
+        float second = std::numeric_limits<float>::infinity();
+        for (uint32_t k = begin + 1; k < end; ++k) {
+            if (d[k] < d[first]) {
+                second = d[first];
+                first = k;
+            } else {
+                second = std::min(second, d[k]);
             }
+        }
+        const float limit = d[first] * (1 + 1e-4f) + 1e-8f;
+        if (second > limit) return first;
+        uint32_t best = end;
+        double bestDistance2 = 0;
+        for (uint32_t k = begin; k < end; ++k) {
+            if (d[k] > limit) continue;
             double e = exact(k);
-            if (e < bestDistance2 || (e == bestDistance2 && k < best)) {
+            if (best == end || e < bestDistance2) {  // in index order: ties keep the first
                 best = k;
                 bestDistance2 = e;
             }
