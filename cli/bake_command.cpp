@@ -68,7 +68,8 @@ void addMetadata(BakedGrid& grid, const CommonOptions& o, const LoadedWood& w) {
     grid.metadata["skeleton"] = o.skeleton;
     grid.metadata["grain"] = grainToJson(w.grain).dump();
     grid.metadata["channels"] =
-        "R,G,B: scene-linear albedo; A: 1; T: growth time (years); knot: branch share (0..1)";
+        "R,G,B: scene-linear albedo; A: coverage (0 outside the felled log); T: growth time "
+        "(years); knot: branch share (0..1)";
 }
 
 void report(const BakedGrid& grid, const std::vector<std::string>& files, double seconds) {

@@ -22,7 +22,7 @@ struct JunctionParams {
 /// Eq. 7: the sun side grows faster.
 struct DirectionParams {
     Vec3 sunRay{0, 1, 0};  ///< direction the sunlight travels (from the sun); unit length
-    double strength = 0;   ///< eps of eq. 7, in [0, 1)
+    double strength = 0;   ///< eps of eq. 7, in [0, 0.95]
 };
 
 /// Eq. 8: Tb = (Db / S)^delta.

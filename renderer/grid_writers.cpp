@@ -26,11 +26,15 @@ static std::string lowerExtension(const std::string& path) {
 void checkOutputName(const std::string& path, const std::vector<std::string>& extensions) {
     std::string e = lowerExtension(path);
     std::string list;
+    bool known = false;
     for (const auto& x : extensions) {
-        if (e == x) return;
+        known |= e == x;
         list += (list.empty() ? "" : ", ") + x;
     }
-    throw InputError(path, "", "unsupported output file name: expected a name ending in " + list);
+    if (!known)
+        throw InputError(path, "",
+                         "unsupported output file name: expected a name ending in " + list);
+    checkOutputPath(path);
 }
 
 std::vector<std::string> writeExr(const BakedGrid& grid, const std::string& path) {
@@ -121,7 +125,8 @@ std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path
                     double v = std::clamp<double>(grid.at(i, j, k)[c], 0.0, 1.0);
                     put16(static_cast<unsigned>(std::lround(v * 65535)));
                 }
-        if (!f.good()) throw InputError(file, "", "cannot write df3 file");
+        f.close();
+        if (!f) throw InputError(file, "", "cannot write df3 file (disk full?)");
         written.push_back(file);
     }
     // The POV-Ray pigment that reassembles the colour (povray.md: exact to 2.8e-4), placed on
@@ -152,7 +157,8 @@ std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path
             name, double(grid.width) / (grid.width - 1), double(grid.height) / (grid.height - 1),
             double(grid.depth) / (grid.depth - 1), size.x, size.y, size.z, grid.origin.x,
             grid.origin.y, grid.origin.z);
-        if (!f.good()) throw InputError(inc, "", "cannot write POV-Ray include");
+        f.close();
+        if (!f) throw InputError(inc, "", "cannot write POV-Ray include");
         written.push_back(inc);
     }
     for (auto& o : outputs) o->commit();

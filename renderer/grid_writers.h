@@ -20,8 +20,9 @@ std::vector<std::string> writeExr(const BakedGrid& grid, const std::string& path
 std::vector<std::string> writeVdb(const BakedGrid& grid, const std::string& path);
 std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path);
 
-/// Throws InputError unless `path` ends in one of `extensions` (lower case, with the dot). Call
-/// before baking, so a bad name fails at once.
+/// Throws InputError unless `path` ends in one of `extensions` (lower case, with the dot) and
+/// can be written (its folder exists and is writable). Call before baking, so a bad name
+/// fails at once rather than after the work.
 void checkOutputName(const std::string& path, const std::vector<std::string>& extensions);
 
 /// Dispatches on the extension (.exr, .vdb, .df3); throws InputError for anything else.

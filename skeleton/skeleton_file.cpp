@@ -96,12 +96,21 @@ private:
         return t;
     }
 
-    void checkSegments(const std::vector<Vec3>& pts, const JsonReader& r, const std::string& key) {
-        for (size_t i = 1; i < pts.size(); ++i)
-            if (length(pts[i] - pts[i - 1]) < 1e-9)
-                throw r.error(key, fmt::format("points {} and {} coincide: expected segments of "
-                                               "non-zero length",
-                                               i - 1, i));
+    /// `pts[0]` is the branch start (not written by the user) when `startPrepended`: messages
+    /// count the user's points from 0.
+    void checkSegments(const std::vector<Vec3>& pts, const JsonReader& r, const std::string& key,
+                       bool startPrepended = false) {
+        for (size_t i = 1; i < pts.size(); ++i) {
+            if (length(pts[i] - pts[i - 1]) >= 1e-9) continue;
+            if (startPrepended && i == 1)
+                throw r.error(key,
+                              "point 0 coincides with the branch's start on its parent: "
+                              "expected segments of non-zero length");
+            size_t a = startPrepended ? i - 2 : i - 1, b = startPrepended ? i - 1 : i;
+            throw r.error(key, fmt::format("points {} and {} coincide: expected segments of "
+                                           "non-zero length",
+                                           a, b));
+        }
     }
 
     BranchDefaults readProperties(JsonReader& r, const BranchDefaults& base) {
@@ -198,7 +207,7 @@ private:
                               "direction and length, not both");
             for (const Vec3& p : b.requireVec3List("points")) points.push_back(p);
             if (points.size() < 2) throw b.error("points", "expected at least one point");
-            checkSegments(points, b, "points");
+            checkSegments(points, b, "points", true);
         } else {
             Vec3 d = readDirection(b);
             double len = props.length > 0 ? props.length : trunkLength_;

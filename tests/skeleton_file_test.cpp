@@ -104,6 +104,14 @@ TEST(SkeletonFile, BadInputNamesThePlace) {
               std::string::npos);
     EXPECT_EQ(errorOf(R"({"trunk": {"points": [[0,0,0],[0,0,1]]}, "brnches": []})"),
               "s.json: brnches: unknown key (misspelled? see the format documentation)");
+    EXPECT_EQ(errorOf(R"({"trunk": {"points": [[0,0,0],[0,0,1]]},
+        "branches": [{"height": 0.5, "points": [[0,0,0.5], [1,0,0.5]]}]})"),
+              "s.json: branches[0].points: point 0 coincides with the branch's start on its "
+              "parent: expected segments of non-zero length");
+    EXPECT_EQ(errorOf(R"({"trunk": {"points": [[0,0,0],[0,0,1]]},
+        "branches": [{"height": 0.5, "points": [[1,0,0.5], [1,0,0.5]]}]})"),
+              "s.json: branches[0].points: points 0 and 1 coincide: expected segments of "
+              "non-zero length");
     EXPECT_EQ(errorOf(R"({"trunk": {"points": [[0,0,0],[0,0,0]]}})"),
               "s.json: trunk.points: points 0 and 1 coincide: expected segments of non-zero "
               "length");

@@ -11,26 +11,31 @@ namespace nenrin {
 
 namespace fs = std::filesystem;
 
-AtomicOutput::AtomicOutput(std::string path) : final_(std::move(path)) {
-    if (final_.empty()) throw InputError("", "output", "empty output path");
-    fs::path p(final_);
+void checkOutputPath(const std::string& path) {
+    if (path.empty()) throw InputError("", "output", "empty output path");
+    fs::path p(path);
     fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
-        throw InputError(final_, "",
+        throw InputError(path, "",
                          "cannot write output: folder '" + dir.string() + "' does not exist");
     if (fs::is_directory(p, ec))
-        throw InputError(final_, "", "cannot write output: this is a folder, expected a file name");
+        throw InputError(path, "", "cannot write output: this is a folder, expected a file name");
     if (access(dir.c_str(), W_OK) != 0)
-        throw InputError(final_, "",
+        throw InputError(path, "",
                          "cannot write output: folder '" + dir.string() + "' is not writable");
+}
+
+AtomicOutput::AtomicOutput(std::string path) : final_(std::move(path)) {
+    checkOutputPath(final_);
+    fs::path p(final_);
+    fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
     std::string name = ".";
     name += p.stem().string();
     name += ".partial-";
     name += std::to_string(getpid());
     name += p.extension().string();
-    fs::path tmp = dir / name;
-    temporary_ = tmp.string();
+    temporary_ = (dir / name).string();
 }
 
 AtomicOutput::~AtomicOutput() {

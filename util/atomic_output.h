@@ -8,6 +8,10 @@
 
 namespace nenrin {
 
+/// Throws InputError unless `path` names a file that could be created: its folder exists and
+/// is writable, and it is not itself a folder. Call before long work.
+void checkOutputPath(const std::string& path);
+
 class AtomicOutput {
 public:
     /// Checks that the folder of `path` exists and is writable; throws InputError otherwise.
