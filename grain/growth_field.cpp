@@ -146,14 +146,15 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
     kept.reset(centre);
     scratch.candidates.measureFrom(centre);
     const float* d2 = scratch.candidates.distances();
+    const uint32_t* candChains = scratch.candidateChains.data();
     const double reachTrunkTime = params_.junction.reach * maxTrunkTime;
     const double speedBound = params_.radialSpeed * maxSpeed_ / (1 - params_.sway.radialJitter);
     size_t k = 0;
     while (k < cands.size()) {
-        const uint32_t chain = segments_[cands[k]].chain;
+        const uint32_t chain = candChains[k];
         const size_t begin = k;
         double nearest = kInf;
-        for (; k < cands.size() && segments_[cands[k]].chain == chain; ++k)
+        for (; k < cands.size() && candChains[k] == chain; ++k)
             nearest = std::min(nearest, static_cast<double>(d2[k]));
         nearest = std::sqrt(nearest);
         const double margin = 1e-5 + 2e-6 * nearest;
@@ -314,9 +315,11 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     if (branchCands.empty()) return;
     std::sort(branchCands.begin(), branchCands.end());
     scratch.candidates.reset(centre);
+    scratch.candidateChains.clear();
     for (uint32_t id : branchCands) {
         const FieldSegment& s = segments_[id];
         scratch.candidates.push(s.a, s.ab, s.invLength2, id);
+        scratch.candidateChains.push_back(s.chain);
     }
     for (size_t c0 = 0; c0 < n; c0 += kChunk) {
         const size_t c1 = std::min(n, c0 + kChunk);

@@ -58,7 +58,8 @@ struct GrowthScratch {
     };
     std::vector<TileChain> tileChains;
     SegmentBatch keptSegments;
-    SegmentBatch candidates;  ///< all branch candidates of the batch
+    SegmentBatch candidates;                ///< all branch candidates of the batch
+    std::vector<uint32_t> candidateChains;  ///< their chain ids
     std::vector<double> centreDistances;
     struct ChainTerm {
         uint32_t chain;
