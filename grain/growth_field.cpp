@@ -25,8 +25,8 @@ double diebackLowerBound(double t, double deathTime, double eps) {
     return t * factor;
 }
 
-/// Nearest of the candidate segments (sorted by id) to p, within maxDistance2. Ties go to the
-/// smaller id, like the indexes.
+/// The nearest segment found so far. Candidates are visited in id order and only a strictly
+/// smaller distance replaces it, so ties go to the smaller id, like the indexes.
 struct Best {
     int32_t segment = kNone;
     double distance2 = kInf;
@@ -71,11 +71,7 @@ GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec
                                         : r.distance * swayRadialFactor(n, s.axis, r.Ta, sway_);
     r.Tb = ageWarp(thickeningTime(db, speed), params_.age.delta);
     r.T = r.Ta + r.Tb;
-    r.dead = false;
-    if (s.branch && r.T > s.deathTime) {
-        r.T = dieback(r.T, s.deathTime, s.diebackExponent);
-        r.dead = true;
-    }
+    if (s.branch) r.T = dieback(r.T, s.deathTime, s.diebackExponent);
     return r;
 }
 

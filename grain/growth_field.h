@@ -90,8 +90,6 @@ public:
         double T, Ta, Tb;
         Vec3 axisPoint, axisDirection;
         double distance;
-        double dead;  ///< 0 living, 1 dead when the trunk reached P  ///< the path time is past the
-                      ///< segment's dieback time
     };
     PathTime chainPathTime(uint32_t segment, const Vec3& p) const;
 
