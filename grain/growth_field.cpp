@@ -368,11 +368,18 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
             // The path through the nearest segment cannot come in under reach x T1: skip it
             // before paying for the full path time.
             const FieldSegment& bs = segments_[static_cast<uint32_t>(best.segment)];
-            double bound =
-                bs.birthBound + ageWarp(std::sqrt(best.distance2) / (bs.gammaBound * speedBound),
-                                        params_.age.delta);
-            if (diebackLowerBound(bound, bs.deathBound, bs.diebackBound) >= reach * t1 * sinAlpha)
-                continue;
+            const double needed = reach * t1 * sinAlpha;
+            if (bs.birthBound >= needed) continue;
+            if (std::isfinite(bs.deathBound)) {
+                double bound = bs.birthBound +
+                               ageWarp(std::sqrt(best.distance2) / (bs.gammaBound * speedBound),
+                                       params_.age.delta);
+                if (diebackLowerBound(bound, bs.deathBound, bs.diebackBound) >= needed) continue;
+            } else {  // the same bound for a living branch, as a distance: no square root
+                double reachable = bs.gammaBound * speedBound *
+                                   ageUnwarp(needed - bs.birthBound, params_.age.delta);
+                if (best.distance2 >= reachable * reachable) continue;
+            }
             PathTime bp = chainPathTime(static_cast<uint32_t>(best.segment), pt);
             if (junctionReachWeight(bp.T / sinAlpha, t1, reach) <= 0) continue;
             // A dead knot: the branch had died before the trunk's bark reached P, so P lies in
