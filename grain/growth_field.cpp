@@ -120,6 +120,29 @@ GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3&
     return own;
 }
 
+bool GrowthField::insideSlabOnly(uint32_t segmentId, const Vec3& lo, const Vec3& hi) const {
+    // tRaw is linear in P, so over the box it spans the range of its corner values.
+    auto range = [&](const FieldSegment& x) {
+        double mn = kInf, mx = -kInf;
+        for (int corner = 0; corner < 8; ++corner) {
+            Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+            double t = dot(c - x.a, x.ab) * x.invLength2;
+            mn = std::min(mn, t);
+            mx = std::max(mx, t);
+        }
+        return std::pair{mn, mx};
+    };
+    constexpr double kMargin = 1e-6;
+    const FieldSegment& s = segments_[segmentId];
+    auto [mn, mx] = range(s);
+    if (mn < kMargin || mx > 1 - kMargin) return false;
+    // Past the previous segment's end and before the next one's start: on this segment's
+    // side of both joints, where the joint is the neighbour's nearest point.
+    if (s.previous != kNone && !(range(segments_[s.previous]).first > 1 + kMargin)) return false;
+    if (s.next != kNone && !(range(segments_[s.next]).second < -kMargin)) return false;
+    return true;
+}
+
 double GrowthField::branchSearchRadius(double trunkTime) const {
     // A branch path at distance D has T_c >= (D (1 - jitter) / (gamma Sb maxSpeed))^delta; once
     // that reaches reach x T1 its weight is 0, so farther segments need not be looked at.
@@ -284,14 +307,37 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         kept.clear();
         for (size_t k = 0; k < trunkCands.size(); ++k)
             if (dist[k] <= nearest + 2 * ch + 1e-9) kept.push_back(trunkCands[k]);
+        // Fast path: the chunk lies inside one candidate's slab and outside its neighbours'
+        // (with a margin for rounding), and the other candidates are those neighbours:
+        // chainPathTime would take the no-blend branch for every point, so call what it would.
+        // Chain neighbours cannot win then either: P projects strictly inside the segment, so
+        // it is strictly nearer to it than to their joint with it.
+        int32_t plain = kNone;
+        for (uint32_t id : kept) {
+            const FieldSegment& x = segments_[id];
+            bool onlyNeighbours = std::all_of(kept.begin(), kept.end(), [&](uint32_t k) {
+                return k == id || static_cast<int32_t>(k) == x.previous ||
+                       static_cast<int32_t>(k) == x.next;
+            });
+            if (onlyNeighbours && insideSlabOnly(id, chunk.lo, chunk.hi)) {
+                plain = static_cast<int32_t>(id);
+                break;
+            }
+        }
         for (size_t i = c0; i < c1; ++i) {
             const Vec3& p = pts[i];
-            Best best;
-            for (uint32_t id : kept) {
-                double d2 = project(segments_[id], p).distance2;
-                if (d2 < best.distance2) best = {static_cast<int32_t>(id), d2};
+            PathTime trunk;
+            if (plain != kNone) {
+                uint32_t id = static_cast<uint32_t>(plain);
+                trunk = segmentPathTime(id, p, project(segments_[id], p).tRaw);
+            } else {
+                Best best;
+                for (uint32_t id : kept) {
+                    double d2 = project(segments_[id], p).distance2;
+                    if (d2 < best.distance2) best = {static_cast<int32_t>(id), d2};
+                }
+                trunk = chainPathTime(static_cast<uint32_t>(best.segment), p);
             }
-            PathTime trunk = chainPathTime(static_cast<uint32_t>(best.segment), p);
             GrowthSample& g = out[i];
             g = GrowthSample{};
             g.T = g.trunkTime = trunk.T;

@@ -96,6 +96,10 @@ public:
 private:
     PathTime segmentPathTime(uint32_t segment, const Vec3& p, double t) const;
     double branchSearchRadius(double trunkTime) const;
+    /// True if every point of the box projects strictly inside the segment's slab and lies
+    /// past the previous segment's end and before the next one's start (so the neighbours'
+    /// nearest points are the shared joints, and eq. 4 needs no blend).
+    bool insideSlabOnly(uint32_t segment, const Vec3& lo, const Vec3& hi) const;
     void evaluateBranches(std::span<const Vec3> points, std::span<GrowthSample> out,
                           GrowthScratch& scratch) const;
     void prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
