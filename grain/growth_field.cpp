@@ -401,9 +401,9 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
             double radius = tc.gamma * speedBound * ageUnwarp(slack, params_.age.delta);
             double radius2 = radius * radius;
             // Quick reject: the box around the chain's kept segments is out of reach.
-            Vec3 out{std::max({tc.lower.x - pt.x, 0.0, pt.x - tc.upper.x}),
-                     std::max({tc.lower.y - pt.y, 0.0, pt.y - tc.upper.y}),
-                     std::max({tc.lower.z - pt.z, 0.0, pt.z - tc.upper.z})};
+            Vec3 out{std::max(std::max(tc.lower.x - pt.x, pt.x - tc.upper.x), 0.0),
+                     std::max(std::max(tc.lower.y - pt.y, pt.y - tc.upper.y), 0.0),
+                     std::max(std::max(tc.lower.z - pt.z, pt.z - tc.upper.z), 0.0)};
             if (dot(out, out) > radius2) continue;
             const auto& kept = scratch.keptSegments;
             uint32_t nearest = kept.id(kept.nearest(tc.begin, tc.end, [&](uint32_t k) {
@@ -427,7 +427,8 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
                 if (best.distance2 >= reachable * reachable) continue;
             }
             PathTime bp = chainPathTime(static_cast<uint32_t>(best.segment), pt);
-            if (junctionReachWeight(bp.T / sinAlpha, t1, reach) <= 0) continue;
+            const double weight = junctionReachWeight(bp.T / sinAlpha, t1, reach);
+            if (weight <= 0) continue;
             // A dead knot: the branch had died before the trunk's bark reached P, so P lies in
             // the dead stub that the trunk encased.
             // The change from intergrown to encased knot is sharp in real wood; one year of
@@ -435,7 +436,7 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
             double deathTime = segments_[static_cast<uint32_t>(best.segment)].deathTime;
             double dead =
                 std::isfinite(deathTime) ? smoothstep(deathTime - 0.5, deathTime + 0.5, t1) : 0.0;
-            terms.push_back({tc.chain, bp.T, sinAlpha, bp.distance, dead});
+            terms.push_back({tc.chain, bp.T, sinAlpha, bp.distance, dead, weight});
         }
         if (terms.empty()) continue;
 
@@ -449,8 +450,7 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
         double trunkTerm = powP(m / t1, p);
         double sum = trunkTerm, dead = 0, strongest = 0;
         for (const auto& t : terms) {
-            double u = junctionReachWeight(t.time / t.sinAlpha, t1, params_.junction.reach) *
-                       powP(m * t.sinAlpha / t.time, p);
+            double u = t.weight * powP(m * t.sinAlpha / t.time, p);
             sum += u;
             dead += t.dead * u;
             if (u > strongest) {

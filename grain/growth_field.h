@@ -64,7 +64,8 @@ struct GrowthScratch {
     struct ChainTerm {
         uint32_t chain;
         double time, sinAlpha, distance;
-        double dead;  ///< 0 living, 1 dead when the trunk reached P
+        double dead;    ///< 0 living, 1 dead when the trunk reached P
+        double weight;  ///< the reach cut-off weight w_c
     };
     std::vector<ChainTerm> terms;
 };
