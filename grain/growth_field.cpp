@@ -63,12 +63,15 @@ GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec
     r.Ta = s.birthA + s.birthDelta * t;
     Vec3 d = p - r.axisPoint;
     r.distance = length(d);
-    Vec3 n = r.distance > 0 ? d / r.distance : Vec3{};
-    double speed = params_.radialSpeed * s.gamma *
-                   taperFactor(r.Ta, params_.taper.nu, params_.taper.omega) *
-                   directionFactor(n, params_.direction.sunRay, params_.direction.strength);
-    double db = sway_.radialJitter == 0 ? r.distance
-                                        : r.distance * swayRadialFactor(n, s.axis, r.Ta, sway_);
+    double speed =
+        params_.radialSpeed * s.gamma * taperFactor(r.Ta, params_.taper.nu, params_.taper.omega);
+    double db = r.distance;
+    // The outward normal only matters to the direction term and the radial jitter.
+    if (params_.direction.strength != 0 || sway_.radialJitter != 0) {
+        Vec3 n = r.distance > 0 ? d * (1 / r.distance) : Vec3{};
+        speed *= directionFactor(n, params_.direction.sunRay, params_.direction.strength);
+        if (sway_.radialJitter != 0) db *= swayRadialFactor(n, s.axis, r.Ta, sway_);
+    }
     r.Tb = ageWarp(thickeningTime(db, speed), params_.age.delta);
     r.T = r.Ta + r.Tb;
     if (s.branch) r.T = dieback(r.T, s.deathTime, s.diebackExponent);
