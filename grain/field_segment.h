@@ -17,6 +17,7 @@ struct FieldSegment {
     double length = 0;
     double birthA = 0, birthDelta = 0;  ///< birth time at a, and at b minus at a
     double gamma = 1, deathTime = kNeverDies, diebackExponent = 0;
+    double inverseSpeed = 0;  ///< 1 / (Sb gamma), years per metre (set by GrowthField)
     /// Bounds over this segment and its chain neighbours (all that its joint blend can use),
     /// chosen so that a time computed from them is a lower bound of the path time: the
     /// smallest node birth time, the largest gamma, the latest death and the smallest

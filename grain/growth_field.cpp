@@ -40,6 +40,7 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
         throw std::invalid_argument("GrowthField: the skeleton has no trunk");
     sway_ = makeSwayWaves(params_.sway);
     segments_ = flattenSegments(index.skeleton());
+    for (FieldSegment& f : segments_) f.inverseSpeed = 1 / (params_.radialSpeed * f.gamma);
     const Skeleton& sk = index.skeleton();
     for (const SkeletonChain& c : sk.chains()) {
         const FieldSegment& first = segments_[c.firstSegment];
@@ -63,16 +64,19 @@ GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec
     r.Ta = s.birthA + s.birthDelta * t;
     Vec3 d = p - r.axisPoint;
     r.distance = length(d);
-    double speed =
-        params_.radialSpeed * s.gamma * taperFactor(r.Ta, params_.taper.nu, params_.taper.omega);
+    // Eq. 3/3' (thickeningTime): Tb = Db / S with S = Sb gamma (x taper, x direction); without
+    // those terms it is a product with the segment's precomputed 1 / (Sb gamma).
     double db = r.distance;
+    double speedFactor = taperFactor(r.Ta, params_.taper.nu, params_.taper.omega);
     // The outward normal only matters to the direction term and the radial jitter.
     if (params_.direction.strength != 0 || sway_.radialJitter != 0) {
         Vec3 n = r.distance > 0 ? d * (1 / r.distance) : Vec3{};
-        speed *= directionFactor(n, params_.direction.sunRay, params_.direction.strength);
+        speedFactor *= directionFactor(n, params_.direction.sunRay, params_.direction.strength);
         if (sway_.radialJitter != 0) db *= swayRadialFactor(n, s.axis, r.Ta, sway_);
     }
-    r.Tb = ageWarp(thickeningTime(db, speed), params_.age.delta);
+    double years = db * s.inverseSpeed;
+    if (speedFactor != 1) years /= speedFactor;
+    r.Tb = ageWarp(years, params_.age.delta);
     r.T = r.Ta + r.Tb;
     if (s.branch) r.T = dieback(r.T, s.deathTime, s.diebackExponent);
     return r;
