@@ -70,20 +70,36 @@ void addMetadata(BakedGrid& grid, const CommonOptions& o, const LoadedWood& w) {
     grid.metadata["channels"] =
         "R,G,B: scene-linear albedo; A: coverage (0 outside the felled log); T: growth time "
         "(years); knot: branch share (0..1)";
+    // Where each sample sits in tree space: sample (i, j, k) = origin + i x + j y + k z, so
+    // a pixel can be traced back to the wood without re-deriving the pith position.
+    auto vec = [](const Vec3& v) { return fmt::format("{} {} {}", v.x, v.y, v.z); };
+    grid.metadata["sample_origin"] = vec(grid.origin);
+    grid.metadata["sample_step_x"] = vec(grid.stepX);
+    grid.metadata["sample_step_y"] = vec(grid.stepY);
+    grid.metadata["sample_step_z"] = vec(grid.stepZ);
 }
 
 void report(const BakedGrid& grid, const std::vector<std::string>& files, double seconds) {
+    // Statistics of the wood only: samples outside a felled log (A = 0) do not count.
     float tMin = INFINITY, tMax = -INFINITY, knotMax = 0;
+    size_t wood = 0;
     for (size_t i = 0; i < grid.sampleCount(); ++i) {
-        tMin = std::min(tMin, grid.data[i * BakedGrid::kChannels + 4]);
-        tMax = std::max(tMax, grid.data[i * BakedGrid::kChannels + 4]);
-        knotMax = std::max(knotMax, grid.data[i * BakedGrid::kChannels + 5]);
+        const float* px = &grid.data[i * BakedGrid::kChannels];
+        if (px[3] <= 0) continue;
+        ++wood;
+        tMin = std::min(tMin, px[4]);
+        tMax = std::max(tMax, px[4]);
+        knotMax = std::max(knotMax, px[5]);
     }
     for (const auto& f : files) fmt::print("wrote {}\n", f);
-    fmt::print(
-        "{} samples in {:.2f} s ({:.2f} M samples/s); T {:.2f}..{:.2f} years; knot max "
-        "{:.2f}\n",
-        grid.sampleCount(), seconds, grid.sampleCount() / seconds * 1e-6, tMin, tMax, knotMax);
+    fmt::print("{} samples in {:.2f} s ({:.2f} M samples/s); ", grid.sampleCount(), seconds,
+               grid.sampleCount() / seconds * 1e-6);
+    if (wood == 0) {
+        fmt::print("no wood: every sample is outside the felled log\n");
+        return;
+    }
+    fmt::print("wood {:.1f}%, T {:.2f}..{:.2f} years, knot max {:.2f}\n",
+               100.0 * wood / grid.sampleCount(), tMin, tMax, knotMax);
 }
 
 double since(std::chrono::steady_clock::time_point t0) {

@@ -17,6 +17,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -557,6 +558,15 @@ TEST_F(CliTest, SliceBakeWritesExrWithChannelsAndMetadata) {
         << img->spec.get_string_attribute("nenrin:grain");
     EXPECT_NE(img->spec.get_string_attribute("nenrin:slice").find("plane=cross"),
               std::string::npos);
+    // Pixel -> tree space: a cross-section steps +X along a row and -Y down the image.
+    double sx = 0, sy = 0, sz = 0;
+    ASSERT_EQ(std::sscanf(img->spec.get_string_attribute("nenrin:sample_step_y").c_str(),
+                          "%lf %lf %lf", &sx, &sy, &sz),
+              3);
+    EXPECT_EQ(sx, 0);
+    EXPECT_LT(sy, 0);
+    EXPECT_EQ(sz, 0);
+    EXPECT_FALSE(img->spec.get_string_attribute("nenrin:sample_origin").empty());
     for (size_t i = 0; i < img->pixels.size(); ++i)
         ASSERT_TRUE(std::isfinite(img->pixels[i])) << "sample " << i;
     const int a = channelIndex(img->spec, "A");
