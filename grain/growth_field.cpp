@@ -14,7 +14,8 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double powP(double x, double p) { return p == 2.0 ? x * x : std::pow(x, p); }
+/// Points per chunk: the unit of candidate pruning inside a batch (an 8 x 8 tile).
+constexpr size_t kChunk = 64;
 
 /// A lower bound of dieback(t, deathTime, eps) without pow(): (t / Tlim)^eps >= (t / Tlim)^n
 /// for n = floor(eps) since t / Tlim >= 1 there.
@@ -31,6 +32,28 @@ struct Best {
     int32_t segment = kNone;
     double distance2 = kInf;
 };
+
+/// An axis-aligned box: chunk bounds and the bounds of kept segments.
+struct Box {
+    Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+    void add(const Vec3& p) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    Vec3 centre() const { return (lo + hi) * 0.5; }
+    double halfDiagonal() const { return 0.5 * length(hi - lo); }
+    /// Corner i of 8 (bit 0: x, bit 1: y, bit 2: z at the upper side). A linear function
+    /// takes its extremes over the box at corners.
+    Vec3 corner(int i) const {
+        return {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z};
+    }
+};
+
+Box boxOf(std::span<const Vec3> points) {
+    Box b;
+    for (const Vec3& p : points) b.add(p);
+    return b;
+}
 
 }  // namespace
 
@@ -52,7 +75,9 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
         chainFrames_.push_back(f);
     }
     maxGamma_ = index.skeleton().maxBranchGamma();
-    maxSpeed_ = (1 + params_.taper.nu) * (1 + params_.direction.strength);
+    // Largest radial speed any path can have (taper x direction x jitter): distance bounds.
+    speedBound_ = params_.radialSpeed * (1 + params_.taper.nu) * (1 + params_.direction.strength) /
+                  (1 - params_.sway.radialJitter);
 }
 
 GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec3& p,
@@ -129,11 +154,11 @@ GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3&
 
 bool GrowthField::insideSlabOnly(uint32_t segmentId, const Vec3& lo, const Vec3& hi) const {
     // tRaw is linear in P, so over the box it spans the range of its corner values.
+    const Box box{lo, hi};
     auto range = [&](const FieldSegment& x) {
         double mn = kInf, mx = -kInf;
         for (int corner = 0; corner < 8; ++corner) {
-            Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
-            double t = dot(c - x.a, x.ab) * x.invLength2;
+            double t = dot(box.corner(corner) - x.a, x.ab) * x.invLength2;
             mn = std::min(mn, t);
             mx = std::max(mx, t);
         }
@@ -151,12 +176,10 @@ bool GrowthField::insideSlabOnly(uint32_t segmentId, const Vec3& lo, const Vec3&
 }
 
 double GrowthField::branchSearchRadius(double trunkTime) const {
-    // A branch path at distance D has T_c >= (D (1 - jitter) / (gamma Sb maxSpeed))^delta; once
-    // that reaches reach x T1 its weight is 0, so farther segments need not be looked at.
-    double gamma = maxGamma_;
-    double years =
-        std::pow(params_.junction.reach * std::max(trunkTime, 0.0), 1.0 / params_.age.delta);
-    return gamma * params_.radialSpeed * maxSpeed_ * years / (1 - params_.sway.radialJitter);
+    // A branch path at distance D has T_c >= (D / (gamma speedBound))^delta; once that reaches
+    // reach x T1 its weight is 0, so farther segments need not be looked at.
+    return maxGamma_ * speedBound_ *
+           ageUnwarp(params_.junction.reach * std::max(trunkTime, 0.0), params_.age.delta);
 }
 
 void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
@@ -164,7 +187,8 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
     // Per chain near the tile, keep only what can matter for some point of the tile; every
     // test here is exact (a bound over the whole box), so results do not depend on tiling.
     // Distances from the centre come from one float pass; a margin covers float rounding.
-    const Vec3 centre = (lo + hi) * 0.5;
+    const Box box{lo, hi};
+    const Vec3 centre = box.centre();
     const auto& cands = scratch.branchCandidates;
     auto& chains = scratch.tileChains;
     auto& kept = scratch.keptSegments;
@@ -174,7 +198,6 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
     const float* d2 = scratch.candidates.distances();
     const uint32_t* candChains = scratch.candidateChains.data();
     const double reachTrunkTime = params_.junction.reach * maxTrunkTime;
-    const double speedBound = params_.radialSpeed * maxSpeed_ / (1 - params_.sway.radialJitter);
     size_t k = 0;
     while (k < cands.size()) {
         const uint32_t chain = candChains[k];
@@ -187,10 +210,8 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
         // 1. The whole box behind the plane F of the branch: sin(alpha) <= 0 everywhere.
         const ChainFrame& frame = chainFrames_[chain];
         bool anyAhead = false;
-        for (int corner = 0; corner < 8 && !anyAhead; ++corner) {
-            Vec3 x{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
-            anyAhead = dot(x - frame.start, frame.direction) > 0;
-        }
+        for (int corner = 0; corner < 8 && !anyAhead; ++corner)
+            anyAhead = dot(box.corner(corner) - frame.start, frame.direction) > 0;
         if (!anyAhead) continue;
         // The largest sin(alpha) over the box (over its bounding ball, seen from Q): the
         // blend compares T_c / sin(alpha) with T1.
@@ -207,7 +228,7 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
         //    point (first with bounds over the whole chain: cheap, then with the kept segments).
         const double closest = std::max(0.0, nearest - margin - halfDiagonal);
         auto timeBound = [&](double birth, double gamma) {
-            return birth + ageWarp(closest / (gamma * speedBound), params_.age.delta);
+            return birth + ageWarp(closest / (gamma * speedBound_), params_.age.delta);
         };
         if (timeBound(frame.birthBound, frame.gammaBound) >= reachTime) continue;
         // 3. Segments that cannot be any point's nearest: farther from the centre than the
@@ -217,8 +238,7 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
         tc.start = frame.start;
         tc.direction = frame.direction;
         tc.begin = kept.size();
-        tc.lower = {kInf, kInf, kInf};
-        tc.upper = -tc.lower;
+        Box bounds;
         tc.gamma = 0;
         tc.birthBound = kInf;
         const double keep = nearest + 2 * halfDiagonal + 2 * margin;
@@ -227,16 +247,14 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
             if (d2[j] > keep2) continue;
             const FieldSegment& s = segments_[cands[j]];
             kept.push(s.a, s.ab, s.invLength2, cands[j]);
-            tc.lower = {std::min({tc.lower.x, s.a.x, s.a.x + s.ab.x}),
-                        std::min({tc.lower.y, s.a.y, s.a.y + s.ab.y}),
-                        std::min({tc.lower.z, s.a.z, s.a.z + s.ab.z})};
-            tc.upper = {std::max({tc.upper.x, s.a.x, s.a.x + s.ab.x}),
-                        std::max({tc.upper.y, s.a.y, s.a.y + s.ab.y}),
-                        std::max({tc.upper.z, s.a.z, s.a.z + s.ab.z})};
+            bounds.add(s.a);
+            bounds.add(s.a + s.ab);
             tc.gamma = std::max(tc.gamma, s.gammaBound);
             tc.birthBound = std::min(tc.birthBound, s.birthBound);
         }
         tc.end = kept.size();
+        tc.lower = bounds.lo;
+        tc.upper = bounds.hi;
         if (timeBound(tc.birthBound, tc.gamma) >= reachTime) {
             kept.truncate(tc.begin);
             continue;
@@ -251,27 +269,6 @@ GrowthSample GrowthField::evaluate(const Vec3& p) const {
     evaluateBatch({&p, 1}, {&out, 1}, scratch);
     return out;
 }
-
-namespace {
-/// Points per chunk: the unit of candidate pruning inside a batch (an 8 x 8 tile).
-constexpr size_t kChunk = 64;
-
-struct Box {
-    Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
-    void add(const Vec3& p) {
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-    Vec3 centre() const { return (lo + hi) * 0.5; }
-    double halfDiagonal() const { return 0.5 * length(hi - lo); }
-};
-
-Box boxOf(std::span<const Vec3> points) {
-    Box b;
-    for (const Vec3& p : points) b.add(p);
-    return b;
-}
-}  // namespace
 
 void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSample> out,
                                 GrowthScratch& scratch) const {
@@ -386,7 +383,6 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
     const size_t n = pts.size();
     const double p = params_.junction.p;
     const double reach = params_.junction.reach;
-    const double speedBound = params_.radialSpeed * maxSpeed_ / (1 - params_.sway.radialJitter);
     for (size_t i = 0; i < n; ++i) {
         const Vec3& pt = pts[i];
         GrowthSample& g = out[i];
@@ -405,7 +401,7 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
             // Beyond this distance T_c / sin(alpha) is past reach x T1: weight 0.
             double slack = reach * t1 * sinAlpha - tc.birthBound;
             if (slack <= 0) continue;
-            double radius = tc.gamma * speedBound * ageUnwarp(slack, params_.age.delta);
+            double radius = tc.gamma * speedBound_ * ageUnwarp(slack, params_.age.delta);
             double radius2 = radius * radius;
             // Quick reject: the box around the chain's kept segments is out of reach.
             Vec3 out{std::max(std::max(tc.lower.x - pt.x, pt.x - tc.upper.x), 0.0),
@@ -425,11 +421,11 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
             if (bs.birthBound >= needed) continue;
             if (std::isfinite(bs.deathBound)) {
                 double bound = bs.birthBound +
-                               ageWarp(std::sqrt(best.distance2) / (bs.gammaBound * speedBound),
+                               ageWarp(std::sqrt(best.distance2) / (bs.gammaBound * speedBound_),
                                        params_.age.delta);
                 if (diebackLowerBound(bound, bs.deathBound, bs.diebackBound) >= needed) continue;
             } else {  // the same bound for a living branch, as a distance: no square root
-                double reachable = bs.gammaBound * speedBound *
+                double reachable = bs.gammaBound * speedBound_ *
                                    ageUnwarp(needed - bs.birthBound, params_.age.delta);
                 if (best.distance2 >= reachable * reachable) continue;
             }
@@ -447,17 +443,17 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
         }
         if (terms.empty()) continue;
 
-        // Smooth minimum, normalised by the smallest candidate time so large p cannot overflow.
+        // Eq. 5 over the trunk and every branch path (junctionTerm / junctionCombine).
         double m = t1;
         for (const auto& t : terms) m = std::min(m, t.time / t.sinAlpha);
         if (m <= 0) {
             g.T = 0;
             continue;
         }
-        double trunkTerm = powP(m / t1, p);
+        double trunkTerm = junctionTerm(m, t1, p);
         double sum = trunkTerm, dead = 0, strongest = 0;
         for (const auto& t : terms) {
-            double u = t.weight * powP(m * t.sinAlpha / t.time, p);
+            double u = t.weight * junctionTerm(m, t.time / t.sinAlpha, p);
             sum += u;
             dead += t.dead * u;
             if (u > strongest) {
@@ -466,7 +462,7 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
                 g.knotAxisDistance = t.distance;
             }
         }
-        g.T = m * (p == 2.0 ? 1.0 / std::sqrt(sum) : std::pow(sum, -1.0 / p));
+        g.T = junctionCombine(m, sum, p);
         g.knot = (sum - trunkTerm) / sum;
         g.deadKnot = dead / sum;
     }

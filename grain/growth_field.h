@@ -116,8 +116,8 @@ private:
         double birthBound, gammaBound;
     };
     std::vector<ChainFrame> chainFrames_;
-    double maxGamma_;  ///< largest branch gamma of the skeleton
-    double maxSpeed_;  ///< upper bound of the radial speed factor (taper x direction)
+    double maxGamma_;    ///< largest branch gamma of the skeleton
+    double speedBound_;  ///< largest radial speed of any path over gamma, m/year
 };
 
 }  // namespace nenrin

@@ -56,18 +56,31 @@ inline double jointBlend(double t1, double m1, double t2, double m2) {
     return w > 0 ? (t1 * m1 + t2 * m2) / w : 0.5 * (t1 + t2);
 }
 
+/// Eq. 5's smooth minimum T = (sum_i w_i E_i^-p)^(-1/p) over path times E_i (T1 for the
+/// trunk, T_c / sin(alpha) for a branch), evaluated relative to m = min E_i so a large p
+/// cannot overflow: each path contributes junctionTerm(m, E_i, p) (times its weight), and
+/// junctionCombine(m, sum, p) gives T. Every term lies in (0, 1]; the trunk's share of the
+/// sum is what GrowthSample::knot leaves over.
+inline double junctionTerm(double m, double effectiveTime, double p) {
+    double x = m / effectiveTime;
+    return p == 2.0 ? x * x : std::pow(x, p);
+}
+inline double junctionCombine(double m, double sum, double p) {
+    return m * (p == 2.0 ? 1.0 / std::sqrt(sum) : std::pow(sum, -1.0 / p));
+}
+
 /// Eq. 5 (our reconstruction, models.md 1.2) for one trunk and one branch path:
 ///   T = T1                                   if sin(alpha) <= 0 (behind the branch's plane F)
 ///   T = (T1^-p + (T2 / sin alpha)^-p)^(-1/p) otherwise.
 /// p = 2 is T1 T2 / sqrt(T2^2 + (T1 sin alpha)^2), the paper's form; p -> infinity the
-/// first-arrival minimum. GrowthField applies the same smooth minimum over all branch paths
-/// at once (junctionSmoothMin), which reduces to this with one branch.
+/// first-arrival minimum. GrowthField sums the same terms over all branch paths at once.
 inline double junctionBlend(double trunkTime, double branchTime, double sinAlpha, double p) {
     if (sinAlpha <= 0) return trunkTime;
-    double m = std::min(trunkTime, branchTime / sinAlpha);
+    double branchEffective = branchTime / sinAlpha;
+    double m = std::min(trunkTime, branchEffective);
     if (m <= 0) return 0;
-    double s = std::pow(m / trunkTime, p) + std::pow(m * sinAlpha / branchTime, p);
-    return m * std::pow(s, -1.0 / p);
+    double sum = junctionTerm(m, trunkTime, p) + junctionTerm(m, branchEffective, p);
+    return junctionCombine(m, sum, p);
 }
 
 /// Linear interpolation from a (t = 0) to b (t = 1).

@@ -9,8 +9,8 @@ void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample
     samples.resize(treePoints.size());
     field_->evaluateBatch(treePoints, samples, scratch);
     const ColourParams& colour = field_->params().colour;
+    const double felled = field_->params().fellingTime;
     for (size_t i = 0; i < treePoints.size(); ++i) {
-        double felled = field_->params().fellingTime;
         bool outside = felled > 0 && samples[i].T > felled;
         out[i].coverage = outside ? 0 : 1;
         out[i].albedo = outside ? Rgb{} : woodColour(samples[i], treePoints[i], colour);
