@@ -7,6 +7,11 @@ find_package(OpenImageIO CONFIG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(fmt CONFIG REQUIRED)
+find_package(tinyobjloader CONFIG REQUIRED)
+
+# Quirk: OpenColorIO's CMake config computes an empty prefix on Debian; pkg-config works.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)
 
 # Quirk: Debian's OpenImageIO target lists /usr/include/opencv4, which does not exist.
 foreach(prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)

@@ -1,0 +1,1 @@
+#include "renderer/colour_management.h"

@@ -1,0 +1,2 @@
+#pragma once
+/// Lat-long environment maps (OpenImageIO) with importance sampling.

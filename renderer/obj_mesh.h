@@ -1,0 +1,2 @@
+#pragma once
+/// Triangle meshes from Wavefront OBJ files (tinyobjloader).

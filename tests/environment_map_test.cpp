@@ -1,0 +1,1 @@
+#include "renderer/environment_map.h"

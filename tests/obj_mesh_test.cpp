@@ -1,0 +1,1 @@
+#include "renderer/obj_mesh.h"
