@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "bake_command.h"
+#include "render_command.h"
 #include "util/input_error.h"
 
 int main(int argc, char** argv) {
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", NENRIN_VERSION);
     app.require_subcommand(1);
     nenrin::addBakeCommands(app);
+    nenrin::addRenderCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -77,6 +77,8 @@ public:
 
     const GrainParams& params() const { return params_; }
     const Skeleton& skeleton() const { return index_->skeleton(); }
+    /// Unit direction of a branch chain at its start (the normal of plane F of eq. 5).
+    Vec3 chainDirection(uint32_t chain) const { return chainFrames_[chain].direction; }
 
     GrowthSample evaluate(const Vec3& p) const;
     /// Evaluates a batch. Spatially coherent batches are much faster than scattered ones: the

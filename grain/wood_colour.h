@@ -9,5 +9,10 @@ namespace nenrin {
 
 /// `treePoint` is the (unswayed) tree-space point: the micro-structure is fixed to the wood.
 Rgb woodColour(const GrowthSample& sample, const Vec3& treePoint, const ColourParams& colour);
+/// The same with the early/late-wood mix E given (a renderer passes E averaged over its pixel
+/// footprint) and the micro-structure scaled by `microWeight` (0 once its cells are smaller
+/// than a pixel: their mean is 0, point samples of them would only add noise).
+Rgb woodColour(const GrowthSample& sample, const Vec3& treePoint, const ColourParams& colour,
+               double lateWood, double microWeight);
 
 }  // namespace nenrin

@@ -1,8 +1,31 @@
 #include "shader/wood_shader.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "grain/wood_colour.h"
 
 namespace nenrin {
+
+namespace {
+
+/// The relief is the late-wood profile filtered over at least this many years, so its slope
+/// stays finite at the sharp late-to-early-wood step.
+constexpr double kReliefMinWidth = 0.04;
+
+/// Micro-structure weight for a footprint `size` (m) and cell size: full below half a cell,
+/// gone past two cells.
+double microWeight(double size, double cell) {
+    return std::clamp(1 - (size / cell - 0.5) / 1.5, 0.0, 1.0);
+}
+
+}  // namespace
+
+WoodShader::WoodShader(const GrowthField& field, Finish finish)
+    : field_(&field),
+      finish_(std::move(finish)),
+      rings_(field.params().colour.lateWoodExponent),
+      gradientStep_(std::max(1e-6, 0.02 * field.params().radialSpeed)) {}
 
 void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample> out,
                           GrowthScratch& scratch, std::vector<GrowthSample>& samples) const {
@@ -16,6 +39,73 @@ void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample
         out[i].albedo = outside ? Rgb{} : woodColour(samples[i], treePoints[i], colour);
         out[i].T = samples[i].T;
         out[i].knot = samples[i].knot;
+    }
+}
+
+void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
+                                 std::span<const SurfaceFootprint> footprints,
+                                 std::span<WoodSurfaceSample> out, WoodScratch& scratch) const {
+    const size_t n = treePoints.size();
+    const double h = gradientStep_;
+    // Each point with its three forward-difference neighbours, side by side so that every run
+    // of 64 evaluations stays compact (the field prunes candidates per run).
+    scratch.points.resize(4 * n);
+    for (size_t i = 0; i < n; ++i) {
+        const Vec3& p = treePoints[i];
+        scratch.points[4 * i] = p;
+        scratch.points[4 * i + 1] = p + Vec3{h, 0, 0};
+        scratch.points[4 * i + 2] = p + Vec3{0, h, 0};
+        scratch.points[4 * i + 3] = p + Vec3{0, 0, h};
+    }
+    scratch.samples.resize(4 * n);
+    field_->evaluateBatch(scratch.points, scratch.samples, scratch.growth);
+
+    const ColourParams& colour = field_->params().colour;
+    const double felled = field_->params().fellingTime;
+    const double coatAlpha = finish_.coatWeight > 0 ? finish_.coatRoughness : finish_.woodRoughness;
+    for (size_t i = 0; i < n; ++i) {
+        const GrowthSample& s = scratch.samples[4 * i];
+        WoodSurfaceSample& o = out[i];
+        o.T = s.T;
+        o.knot = s.knot;
+        o.deadKnot = s.deadKnot;
+        o.gradientT = Vec3{scratch.samples[4 * i + 1].T - s.T, scratch.samples[4 * i + 2].T - s.T,
+                           scratch.samples[4 * i + 3].T - s.T} /
+                      h;
+
+        double width = 0, size = 0;
+        if (!footprints.empty()) {
+            const SurfaceFootprint& f = footprints[i];
+            width =
+                std::max(std::abs(dot(o.gradientT, f.dpdx)), std::abs(dot(o.gradientT, f.dpdy)));
+            size = std::sqrt(std::max(lengthSquared(f.dpdx), lengthSquared(f.dpdy)));
+        }
+        o.ringFilterWidth = width;
+        o.lateWood = rings_.filtered(s.T, width);
+
+        bool outside = felled > 0 && s.T > felled;
+        o.coverage = outside ? 0 : 1;
+        o.albedo = outside ? Rgb{}
+                           : woodColour(s, treePoints[i], colour, o.lateWood,
+                                        microWeight(size, colour.microCellSize));
+
+        // Fibres follow the growth axis (the branch's inside a knot) and lie in the ring
+        // surface: remove the part along grad T, which bends them around knots.
+        Vec3 axis = s.axisDirection;
+        if (s.knotChain >= 0 && s.knot > 0) {
+            Vec3 branch = field_->chainDirection(static_cast<uint32_t>(s.knotChain));
+            if (dot(branch, axis) < 0) branch = -branch;
+            axis = normalize(axis * (1 - s.knot) + branch * s.knot);
+        }
+        double g2 = lengthSquared(o.gradientT);
+        Vec3 along = g2 > 0 ? axis - o.gradientT * (dot(axis, o.gradientT) / g2) : axis;
+        o.fibre = lengthSquared(along) > 1e-12 ? normalize(along) : axis;
+
+        double slope = rings_.filteredSlope(s.T, std::max(width, kReliefMinWidth));
+        // Past a footprint of a ring or so the relief averages out: fade it with the filter.
+        double fade = 1 / (1 + width * width * 4);
+        o.reliefGradient = o.gradientT * (finish_.bumpDepth * slope * fade);
+        o.roughness = coatAlpha;
     }
 }
 

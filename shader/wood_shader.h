@@ -1,12 +1,20 @@
 #pragma once
-/// The wood as a material evaluator: tree-space points in, albedo + growth time + knot out.
-/// For now this is what the bakers need; the renderer's material (roughness, fibre direction,
-/// bump, ring prefiltering) and the plugin C ABI grow here.
+/// The wood as a material: tree-space points in, everything a renderer needs out.
+///  - evaluate(): albedo, growth time, knot and the felling mask, one field evaluation per
+///    point (bakers, and the renderer's indirect bounces).
+///  - evaluateSurface(): the full surface response: the same plus the gradient of T (forward
+///    differences, three more evaluations per point), the fibre direction (the growth axis
+///    bent into the ring surface, so fibres flow around knots), a late-wood relief gradient
+///    for bump mapping, the coat roughness, and the ring profile of eq. 6 box-filtered over
+///    the pixel footprint (|grad T . dp/dx|) so distant boards show no moire.
 
 #include <span>
+#include <vector>
 
 #include "grain/growth_field.h"
 #include "grain/rgb.h"
+#include "shader/finish.h"
+#include "shader/ring_profile.h"
 
 namespace nenrin {
 
@@ -17,19 +25,60 @@ struct WoodSample {
     double knot = 0;
 };
 
+/// Tree-space offsets from a shading point to the surface points seen through the
+/// neighbouring pixels (ray differentials). Zero = a point sample.
+struct SurfaceFootprint {
+    Vec3 dpdx, dpdy;
+};
+
+struct WoodSurfaceSample {
+    Rgb albedo;                  ///< scene-linear, ring profile filtered over the footprint
+    double coverage = 1;         ///< 0 outside the felled log
+    double T = 0;                ///< growth time, years
+    double knot = 0;             ///< branch share of the junction blend, 0..1
+    double deadKnot = 0;         ///< dead part of the knot share
+    double lateWood = 0;         ///< E of eq. 6, filtered
+    double ringFilterWidth = 0;  ///< years of T under the footprint
+    double roughness = 0;        ///< GGX alpha of the finish's coat (bare wood if no coat)
+    Vec3 fibre;                  ///< unit fibre direction, tree space
+    Vec3 gradientT;              ///< grad T, years per metre, tree space
+    /// Gradient of the relief height (m/m, tree space): bump mapping tilts the normal by its
+    /// component along the surface.
+    Vec3 reliefGradient;
+};
+
+/// Per-thread buffers.
+struct WoodScratch {
+    GrowthScratch growth;
+    std::vector<Vec3> points;
+    std::vector<GrowthSample> samples;
+};
+
 class WoodShader {
 public:
     /// The field must outlive the shader.
-    explicit WoodShader(const GrowthField& field) : field_(&field) {}
+    explicit WoodShader(const GrowthField& field, Finish finish = Finish{});
 
     const GrowthField& field() const { return *field_; }
+    const Finish& finish() const { return finish_; }
 
     /// Evaluates a spatially coherent batch of tree-space points.
     void evaluate(std::span<const Vec3> treePoints, std::span<WoodSample> out,
                   GrowthScratch& scratch, std::vector<GrowthSample>& samples) const;
 
+    /// The full surface response. `footprints` is empty (point samples) or one per point.
+    void evaluateSurface(std::span<const Vec3> treePoints,
+                         std::span<const SurfaceFootprint> footprints,
+                         std::span<WoodSurfaceSample> out, WoodScratch& scratch) const;
+
+    /// Step of the forward differences for grad T (m): 2 % of a ring at the trunk's speed.
+    double gradientStep() const { return gradientStep_; }
+
 private:
     const GrowthField* field_;
+    Finish finish_;
+    RingProfile rings_;
+    double gradientStep_;
 };
 
 }  // namespace nenrin

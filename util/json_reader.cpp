@@ -101,6 +101,12 @@ JsonReader::JsonReader(const nlohmann::json& node, std::string file, std::string
 }
 
 bool JsonReader::has(const std::string& key) const { return node_->contains(key); }
+bool JsonReader::isNumber(const std::string& key) const {
+    return has(key) && (*node_)[key].is_number();
+}
+bool JsonReader::isBoolean(const std::string& key) const {
+    return has(key) && (*node_)[key].is_boolean();
+}
 
 std::string JsonReader::pathOf(const std::string& key) const {
     if (key.empty()) return path_.empty() ? "(top level)" : path_;

@@ -30,6 +30,9 @@ public:
     JsonReader(const nlohmann::json& node, std::string file, std::string path = "");
 
     bool has(const std::string& key) const;
+    /// True if the key is present and holds a number / a boolean (for keys that take either).
+    bool isNumber(const std::string& key) const;
+    bool isBoolean(const std::string& key) const;
     const std::string& file() const { return file_; }
     const std::string& path() const { return path_; }
     /// The JSON path of a key of this object, e.g. "branches[2].gamma".

@@ -1,0 +1,96 @@
+#include "render_command.h"
+
+#include <fmt/format.h>
+
+#include <string>
+
+#include "arguments.h"
+#include "renderer/colour_management.h"
+#include "renderer/grid_writers.h"
+#include "renderer/path_tracer.h"
+#include "renderer/scene_file.h"
+#include "util/input_error.h"
+
+namespace nenrin {
+
+namespace {
+
+constexpr int kMaxSide = 16384;
+constexpr long long kMaxPixels = 1LL << 26;
+
+struct RenderCliOptions {
+    std::string scene;
+    std::string output;
+    std::string png;
+    std::string resolution;
+    int spp = 0;
+    long long seed = -1;
+    int threads = 0;
+    bool quiet = false;
+};
+
+void run(const RenderCliOptions& o) {
+    // Check every output name before the (long) work, so a typo fails at once.
+    checkOutputName(o.output, {".exr"});
+    if (!o.png.empty()) checkOutputName(o.png, {".png"});
+    std::unique_ptr<Scene> scene = loadScene(o.scene);
+    RenderSettings& s = scene->settings;
+    if (!o.resolution.empty()) {
+        auto [w, h] = parseResolution(o.resolution, "--res", kMaxSide);
+        if (static_cast<long long>(w) * h > kMaxPixels)
+            throw InputError("command line", "--res",
+                             fmt::format("{}x{} is over the {} pixel limit", w, h, kMaxPixels));
+        s.width = w;
+        s.height = h;
+    }
+    if (o.spp > 0) s.spp = o.spp;
+    if (o.seed >= 0) s.seed = static_cast<uint64_t>(o.seed);
+
+    RenderOptions options;
+    options.threads = o.threads;
+    options.quiet = o.quiet;
+    RenderStats stats;
+    Film film = renderScene(*scene, options, stats);
+
+    std::map<std::string, std::string> metadata{
+        {"version", NENRIN_VERSION},
+        {"scene", o.scene},
+        {"spp", std::to_string(s.spp)},
+        {"seed", std::to_string(s.seed)},
+        {"max_depth", std::to_string(s.maxDepth)},
+        {"channels",
+         "R,G,B: scene-linear radiance; A: coverage; albedo; N: world normal; Z: depth along "
+         "the view axis (m); T: growth time (years); knot: 0..1; lamella: board id or -1"}};
+    writeFilmExr(film, o.output, metadata);
+    fmt::print("wrote {}\n", o.output);
+    if (!o.png.empty()) {
+        writePreviewPng(o.png, film.rgb, film.width, film.height);
+        fmt::print("wrote {} ({})\n", o.png, displayConfigName());
+    }
+    fmt::print("{}x{} at {} spp in {:.2f} s: {:.2f} M rays/s ({:.2f} M camera rays/s)\n", s.width,
+               s.height, s.spp, stats.seconds, stats.rays / stats.seconds * 1e-6,
+               stats.cameraRays / stats.seconds * 1e-6);
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app) {
+    auto o = std::make_shared<RenderCliOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "render", "Path-trace a scene (docs/scene-format.md) to an EXR with AOVs");
+    cmd->add_option("scene", o->scene, "Scene JSON file")->required();
+    cmd->add_option("-o,--output", o->output, "Output EXR (R,G,B,A + AOVs)")->required();
+    cmd->add_option("--spp", o->spp, "Samples per pixel (overrides the scene)")
+        ->check(CLI::Range(1, 1 << 16));
+    cmd->add_option("--res", o->resolution, "Resolution WxH (overrides the scene), e.g. 640x400");
+    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
+        ->check(CLI::Range(0, 1024))
+        ->default_val(0);
+    cmd->add_option("--seed", o->seed, "Random seed (overrides the scene)")
+        ->check(CLI::Range(0LL, 1LL << 53));
+    cmd->add_option("--png", o->png, "Also write an 8-bit sRGB preview through OpenColorIO");
+    cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
+    cmd->callback([o] { run(*o); });
+}
+
+}  // namespace nenrin

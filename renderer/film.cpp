@@ -1,0 +1,62 @@
+#include "renderer/film.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include "util/atomic_output.h"
+#include "util/input_error.h"
+
+namespace nenrin {
+
+void Film::resize(int w, int h) {
+    width = w;
+    height = h;
+    size_t n = size_t(w) * h;
+    rgb.assign(3 * n, 0);
+    albedo.assign(3 * n, 0);
+    normal.assign(3 * n, 0);
+    alpha.assign(n, 0);
+    depth.assign(n, 0);
+    growthTime.assign(n, 0);
+    knot.assign(n, 0);
+    lamella.assign(n, -1);
+}
+
+void writeFilmExr(const Film& film, const std::string& path,
+                  const std::map<std::string, std::string>& metadata) {
+    const std::vector<std::string> names = {"R",        "G",        "B",    "A",      "albedo.R",
+                                            "albedo.G", "albedo.B", "N.X",  "N.Y",    "N.Z",
+                                            "Z",        "T",        "knot", "lamella"};
+    const int channels = static_cast<int>(names.size());
+    OIIO::ImageSpec spec(film.width, film.height, channels, OIIO::TypeDesc::FLOAT);
+    spec.channelnames = names;
+    spec.alpha_channel = 3;
+    spec.z_channel = 10;
+    spec.attribute("compression", "zip");
+    for (const auto& [key, value] : metadata) spec.attribute("nenrin:" + key, value);
+
+    const size_t n = size_t(film.width) * film.height;
+    std::vector<float> pixels(n * channels);
+    for (size_t i = 0; i < n; ++i) {
+        float* p = &pixels[i * channels];
+        for (int c = 0; c < 3; ++c) {
+            p[c] = film.rgb[3 * i + c];
+            p[4 + c] = film.albedo[3 * i + c];
+            p[7 + c] = film.normal[3 * i + c];
+        }
+        p[3] = film.alpha[i];
+        p[10] = film.depth[i];
+        p[11] = film.growthTime[i];
+        p[12] = film.knot[i];
+        p[13] = film.lamella[i];
+    }
+    AtomicOutput out(path);
+    auto writer = OIIO::ImageOutput::create(out.temporaryPath());
+    if (!writer || !writer->open(out.temporaryPath(), spec) ||
+        !writer->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !writer->close())
+        throw InputError(
+            path, "output",
+            "could not write the EXR: " + (writer ? writer->geterror() : OIIO::geterror()));
+    out.commit();
+}
+
+}  // namespace nenrin

@@ -1,0 +1,33 @@
+#pragma once
+/// The rendered image and its AOVs, and the EXR writer (OpenImageIO). Channels:
+///   R, G, B      scene-linear radiance (box filter over the pixel)
+///   A            share of the pixel's samples whose camera ray hit geometry
+///   albedo.R/G/B surface albedo at the first hit (wood: the filtered ring colour)
+///   N.X/Y/Z      world-space shading normal at the first hit (facing the camera)
+///   Z            distance along the camera's viewing axis to the first hit
+///   T            growth time (years) at the first hit on wood
+///   knot         knot share (0..1) at the first hit on wood
+///   lamella      id of the board at the first sample's hit, -1 if none (not laminated)
+/// Each AOV but lamella is the mean over the samples that contribute to it (hits for albedo,
+/// N and Z, wood hits for T and knot); 0 where none did.
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace nenrin {
+
+struct Film {
+    int width = 0, height = 0;
+    std::vector<float> rgb, albedo, normal;  ///< 3 per pixel, row 0 at the top
+    std::vector<float> alpha, depth, growthTime, knot, lamella;
+
+    void resize(int w, int h);
+};
+
+/// Writes all channels as 32-bit float EXR (zip), atomically; `metadata` goes into the header
+/// as nenrin:KEY strings.
+void writeFilmExr(const Film& film, const std::string& path,
+                  const std::map<std::string, std::string>& metadata);
+
+}  // namespace nenrin

@@ -1,0 +1,494 @@
+#include "renderer/path_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "renderer/camera.h"
+#include "renderer/lights.h"
+#include "renderer/parallel_tiles.h"
+#include "renderer/ray_scene.h"
+#include "shader/surface_bsdf.h"
+#include "util/hash.h"
+#include "util/progress.h"
+
+namespace nenrin {
+
+namespace {
+
+constexpr int kTileSize = 16;
+/// Random dimensions: 0-3 camera (pixel jitter, lens), then kDimsPerBounce per bounce.
+constexpr uint64_t kLightDims = 2;
+/// Bounces are spaced far apart so a scene's light count never makes two bounces share one.
+constexpr uint64_t kDimsPerBounce = 1 << 16;
+constexpr Rgb kBarkColour{0.06, 0.04, 0.03};
+
+/// The counter-based random number for (pixel, sample, dimension).
+double randomAt(uint64_t seed, uint64_t pixel, uint64_t sample, uint64_t dimension) {
+    return uniform01(hashCombine(seed, pixel), sample, dimension);
+}
+
+double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
+Rgb multiply(const Rgb& a, const Rgb& b) { return {a.r * b.r, a.g * b.g, a.b * b.b}; }
+bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
+
+double powerHeuristic(double a, double b) {
+    double a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0 ? a2 / (a2 + b2) : 0;
+}
+
+/// An orthonormal frame around a unit normal.
+struct Frame {
+    Vec3 s, t, n;
+    explicit Frame(const Vec3& normal) : n(normal) {
+        s = anyPerpendicular(n);
+        t = cross(n, s);
+    }
+    Vec3 toLocal(const Vec3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+    Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
+};
+
+/// Ray origin nudged off the surface along the geometric normal, to the side of `towards`.
+Vec3 offsetOrigin(const Vec3& p, const Vec3& ng, const Vec3& towards) {
+    double scale = 1e-5 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+    return p + ng * (dot(ng, towards) > 0 ? scale : -scale);
+}
+
+struct PathState {
+    Ray ray;
+    Ray rayX, rayY;  ///< camera ray differentials (depth 0 only)
+    Rgb throughput{1, 1, 1};
+    Rgb radiance;
+    uint32_t pixel = 0;  ///< index within the tile
+    uint32_t sample = 0;
+    int depth = 0;
+    double bsdfPdf = 0;  ///< density of the bounce that made the current ray (for MIS)
+    bool alive = true;
+    SurfaceHit hit;
+    // Shading inputs worked out per hit.
+    uint32_t material = 0;
+    int32_t lamella = -1;
+    const RigidTransform* treeFromObject = nullptr;
+    const RigidTransform* worldFromObject = nullptr;
+};
+
+/// Per-pixel AOV accumulators of one tile.
+struct TileAovs {
+    std::vector<Rgb> rgb, albedo;
+    std::vector<Vec3> normal;
+    std::vector<double> hits, depth, woodHits, growthTime, knot;
+    std::vector<int32_t> lamella;
+    explicit TileAovs(size_t n)
+        : rgb(n),
+          albedo(n),
+          normal(n),
+          hits(n),
+          depth(n),
+          woodHits(n),
+          growthTime(n),
+          knot(n),
+          lamella(n, -1) {}
+};
+
+class TileRenderer {
+public:
+    TileRenderer(const Scene& scene, const RayScene& rays, const Camera& camera)
+        : scene_(scene), rays_(rays), camera_(camera), env_(environmentLight(scene)) {}
+
+    void render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats);
+
+private:
+    void traceCamera(std::vector<PathState>& paths);
+    void resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
+                     const std::vector<uint64_t>& pixelIds);
+    void shadeWood(std::vector<PathState>& paths, const std::vector<uint32_t>& woodPaths);
+    void shade(PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood, TileAovs& aovs);
+
+    const Scene& scene_;
+    const RayScene& rays_;
+    const Camera& camera_;
+    const Light* env_;
+    uint64_t rayCount_ = 0;
+    // Per-tile scratch.
+    std::vector<WoodSurfaceSample> woodResults_;
+    std::vector<int32_t> woodSlot_;
+    WoodScratch woodScratch_;
+    std::vector<Vec3> woodPoints_;
+    std::vector<SurfaceFootprint> woodFootprints_;
+    std::vector<WoodSurfaceSample> woodBatch_;
+    std::vector<WoodSample> woodPlain_;
+};
+
+void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats) {
+    const RenderSettings& settings = scene_.settings;
+    const int tw = x1 - x0, th = y1 - y0;
+    const size_t pixels = size_t(tw) * th;
+    const uint32_t spp = static_cast<uint32_t>(settings.spp);
+    const double differentialScale = std::max(0.125, 1 / std::sqrt(double(spp)));
+
+    std::vector<uint64_t> pixelIds(pixels);
+    std::vector<PathState> paths(pixels * spp);
+    for (int j = 0; j < th; ++j) {
+        for (int i = 0; i < tw; ++i) {
+            uint32_t p = static_cast<uint32_t>(j * tw + i);
+            uint64_t id = uint64_t(y0 + j) * settings.width + (x0 + i);
+            pixelIds[p] = id;
+            // Pixel jitter: the R2 sequence over the samples, rotated per pixel.
+            double r1 = randomAt(settings.seed, id, 0xffffffffull, 0);
+            double r2 = randomAt(settings.seed, id, 0xffffffffull, 1);
+            for (uint32_t s = 0; s < spp; ++s) {
+                PathState& path = paths[p * spp + s];
+                path.pixel = p;
+                path.sample = s;
+                double jx = r1 + s * 0.7548776662466927, jy = r2 + s * 0.5698402909980532;
+                jx -= std::floor(jx);
+                jy -= std::floor(jy);
+                CameraRay c =
+                    camera_.generate(x0 + i + jx, y0 + j + jy, randomAt(settings.seed, id, s, 2),
+                                     randomAt(settings.seed, id, s, 3), differentialScale);
+                path.ray = c.ray;
+                path.rayX = c.rayX;
+                path.rayY = c.rayY;
+            }
+        }
+    }
+
+    TileAovs aovs(pixels);
+    traceCamera(paths);
+    for (int depth = 0;; ++depth) {
+        resolveHits(paths, aovs, pixelIds);
+        bool any = false;
+        for (PathState& path : paths) {
+            if (!path.alive) continue;
+            any = true;
+            SurfaceHit hit = rays_.intersect(path.ray);
+            ++rayCount_;
+            path.hit = hit;
+        }
+        if (!any) break;
+    }
+
+    // Into the film: this tile's pixels only, so threads never share a pixel.
+    const double inv = 1.0 / spp;
+    for (int j = 0; j < th; ++j) {
+        for (int i = 0; i < tw; ++i) {
+            size_t p = size_t(j) * tw + i;
+            size_t f = size_t(y0 + j) * film.width + (x0 + i);
+            Rgb c = aovs.rgb[p] * inv;
+            film.rgb[3 * f] = float(c.r);
+            film.rgb[3 * f + 1] = float(c.g);
+            film.rgb[3 * f + 2] = float(c.b);
+            film.alpha[f] = float(aovs.hits[p] * inv);
+            if (aovs.hits[p] > 0) {
+                double h = 1 / aovs.hits[p];
+                Rgb a = aovs.albedo[p] * h;
+                Vec3 n = aovs.normal[p] * h;
+                film.albedo[3 * f] = float(a.r);
+                film.albedo[3 * f + 1] = float(a.g);
+                film.albedo[3 * f + 2] = float(a.b);
+                film.normal[3 * f] = float(n.x);
+                film.normal[3 * f + 1] = float(n.y);
+                film.normal[3 * f + 2] = float(n.z);
+                film.depth[f] = float(aovs.depth[p] * h);
+            }
+            if (aovs.woodHits[p] > 0) {
+                film.growthTime[f] = float(aovs.growthTime[p] / aovs.woodHits[p]);
+                film.knot[f] = float(aovs.knot[p] / aovs.woodHits[p]);
+            }
+            film.lamella[f] = float(aovs.lamella[p]);
+        }
+    }
+    stats.cameraRays += pixels * spp;
+    stats.rays += rayCount_;
+}
+
+void TileRenderer::traceCamera(std::vector<PathState>& paths) {
+    Ray rays[16];
+    SurfaceHit hits[16];
+    for (size_t base = 0; base < paths.size(); base += 16) {
+        int count = static_cast<int>(std::min<size_t>(16, paths.size() - base));
+        for (int k = 0; k < count; ++k) rays[k] = paths[base + k].ray;
+        rays_.intersect16(rays, count, hits);
+        for (int k = 0; k < count; ++k) paths[base + k].hit = hits[k];
+    }
+    rayCount_ += paths.size();
+}
+
+/// Surface points of the hits: where in the tree (wood), which board, and the footprint.
+void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
+                               const std::vector<uint64_t>& pixelIds) {
+    std::vector<uint32_t> woodPaths;
+    for (uint32_t i = 0; i < paths.size(); ++i) {
+        PathState& path = paths[i];
+        if (!path.alive || !path.hit.hit || path.hit.isLight) continue;
+        const SceneObject& object = scene_.objects[path.hit.index];
+        path.material = object.material;
+        path.worldFromObject = &object.worldFromObject;
+        path.lamella = -1;
+        path.treeFromObject = &object.treeFromObject;
+        if (object.layout) {
+            Vec3 local = object.worldFromObject.inverse().point(path.hit.position);
+            const Lamella& l = object.layout->lamellae[object.layout->lamellaAt(local)];
+            path.lamella = l.id;
+            path.treeFromObject = &l.treeFromProduct;
+        }
+        if (scene_.materials[path.material].type == MaterialType::Wood) woodPaths.push_back(i);
+    }
+    shadeWood(paths, woodPaths);
+    for (uint32_t i = 0; i < paths.size(); ++i) {
+        PathState& path = paths[i];
+        if (!path.alive) continue;
+        const WoodSurfaceSample* wood = woodSlot_[i] >= 0 ? &woodResults_[woodSlot_[i]] : nullptr;
+        shade(path, pixelIds[path.pixel], wood, aovs);
+    }
+}
+
+void TileRenderer::shadeWood(std::vector<PathState>& paths,
+                             const std::vector<uint32_t>& woodPaths) {
+    woodSlot_.assign(paths.size(), -1);
+    woodResults_.resize(woodPaths.size());
+    // Coherent batches: by material, then board, then path order (pixel-major).
+    std::vector<uint32_t> order(woodPaths.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        const PathState& pa = paths[woodPaths[a]];
+        const PathState& pb = paths[woodPaths[b]];
+        if (pa.material != pb.material) return pa.material < pb.material;
+        return pa.treeFromObject < pb.treeFromObject;
+    });
+    size_t begin = 0;
+    while (begin < order.size()) {
+        const PathState& first = paths[woodPaths[order[begin]]];
+        size_t end = begin + 1;
+        while (end < order.size()) {
+            const PathState& p = paths[woodPaths[order[end]]];
+            if (p.material != first.material || p.treeFromObject != first.treeFromObject) break;
+            ++end;
+        }
+        const WoodShader& shader = *scene_.materials[first.material].wood;
+        const RigidTransform treeFromWorld =
+            (*first.treeFromObject) * first.worldFromObject->inverse();
+        const bool camera = first.depth == 0;
+        size_t n = end - begin;
+        woodPoints_.resize(n);
+        woodFootprints_.resize(camera ? n : 0);
+        for (size_t k = 0; k < n; ++k) {
+            const PathState& p = paths[woodPaths[order[begin + k]]];
+            woodPoints_[k] = treeFromWorld.point(p.hit.position);
+            if (camera) {
+                // Ray differentials: where the neighbouring pixels' rays meet the hit's plane.
+                const Vec3& n0 = p.hit.geometricNormal;
+                auto onPlane = [&](const Ray& r) {
+                    double den = dot(n0, r.direction);
+                    if (std::abs(den) < 1e-12) return p.hit.position;
+                    double t = dot(n0, p.hit.position - r.origin) / den;
+                    return r.origin + r.direction * t;
+                };
+                woodFootprints_[k] = {treeFromWorld.vector(onPlane(p.rayX) - p.hit.position),
+                                      treeFromWorld.vector(onPlane(p.rayY) - p.hit.position)};
+            }
+        }
+        woodBatch_.resize(n);
+        if (camera) {
+            shader.evaluateSurface(woodPoints_, woodFootprints_, woodBatch_, woodScratch_);
+        } else {
+            woodPlain_.resize(n);
+            shader.evaluate(woodPoints_, woodPlain_, woodScratch_.growth, woodScratch_.samples);
+            for (size_t k = 0; k < n; ++k) {
+                WoodSurfaceSample& w = woodBatch_[k];
+                w = WoodSurfaceSample{};
+                w.albedo = woodPlain_[k].albedo;
+                w.coverage = woodPlain_[k].coverage;
+                w.T = woodPlain_[k].T;
+                w.knot = woodPlain_[k].knot;
+                w.roughness = shader.finish().coatRoughness;
+            }
+        }
+        const RigidTransform worldFromTree = treeFromWorld.inverse();
+        for (size_t k = 0; k < n; ++k) {
+            uint32_t slot = order[begin + k];
+            WoodSurfaceSample w = woodBatch_[k];
+            // Directions back to world space for shading.
+            w.fibre = worldFromTree.vector(w.fibre);
+            w.reliefGradient = worldFromTree.vector(w.reliefGradient);
+            woodResults_[slot] = w;
+            woodSlot_[woodPaths[slot]] = static_cast<int32_t>(slot);
+        }
+        begin = end;
+    }
+}
+
+void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood,
+                         TileAovs& aovs) {
+    const RenderSettings& settings = scene_.settings;
+    const uint64_t dim = 4 + path.depth * kDimsPerBounce;
+    const uint64_t lightDims = 4;
+    auto rnd = [&](uint64_t k) { return randomAt(settings.seed, pixelId, path.sample, dim + k); };
+    // Dimensions of this bounce: 0-3 BSDF sampling and roulette, then two per light.
+    const Vec3 wo = -path.ray.direction;
+    const bool camera = path.depth == 0;
+
+    if (!path.hit.hit || path.hit.isLight) {
+        Rgb le;
+        double lightPdf = 0;
+        if (!path.hit.hit) {
+            if (env_) {
+                le = env_->environment->radiance(path.ray.direction);
+                lightPdf = env_->environment->pdf(path.ray.direction);
+            }
+        } else {
+            const Light& l = scene_.lights[path.hit.index];
+            le = rectLightRadiance(l, path.ray.direction);
+            lightPdf = rectLightPdf(l, path.ray.direction, path.hit.distance);
+            if (camera) {
+                aovs.hits[path.pixel] += 1;
+                aovs.depth[path.pixel] +=
+                    path.hit.distance * dot(path.ray.direction, camera_.forward());
+                aovs.normal[path.pixel] += path.hit.geometricNormal;
+            }
+        }
+        double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
+        path.radiance = path.radiance + multiply(path.throughput, le) * w;
+        aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
+        path.alive = false;
+        return;
+    }
+
+    // The surface: normals facing the incoming ray.
+    const Material& material = scene_.materials[path.material];
+    Vec3 ng = path.hit.geometricNormal;
+    Vec3 ns = path.hit.shadingNormal;
+    if (dot(ng, wo) < 0) ng = -ng;
+    if (dot(ns, ng) < 0) ns = -ns;
+
+    SurfaceBsdf bsdf;
+    if (material.type == MaterialType::Wood) {
+        const Finish& finish = material.wood->finish();
+        if (wood->coverage > 0) {
+            bsdf.base = wood->albedo;
+            bsdf.fibreStrength = finish.fibreStrength;
+            bsdf.fibreWidth = finish.fibreWidth;
+        } else {
+            bsdf.base = kBarkColour;  // past the bark of the felled log
+        }
+        bsdf.coatWeight = finish.coatWeight;
+        bsdf.coatAlpha = finish.coatRoughness;
+        bsdf.ior = finish.coatIor;
+        // Relief: tilt the normal against the height gradient's part along the surface.
+        Vec3 g = wood->reliefGradient;
+        Vec3 bumped = normalize(ns - (g - ns * dot(g, ns)));
+        if (dot(bumped, wo) > 0) ns = bumped;
+    } else {
+        bsdf.base = material.colour;
+        if (material.type == MaterialType::Glossy) {
+            bsdf.coatWeight = 1;
+            bsdf.coatAlpha = material.roughness;
+        } else if (material.type == MaterialType::Metal) {
+            bsdf.metal = true;
+            bsdf.metalF0 = material.colour;
+            bsdf.metalAlpha = material.roughness;
+        }
+    }
+    Frame frame(ns);
+    if (wood && lengthSquared(wood->fibre) > 0) bsdf.fibre = frame.toLocal(wood->fibre);
+    const Vec3 woLocal = frame.toLocal(wo);
+
+    if (camera) {
+        aovs.hits[path.pixel] += 1;
+        aovs.albedo[path.pixel] = aovs.albedo[path.pixel] + bsdf.base;
+        aovs.normal[path.pixel] += ns;
+        aovs.depth[path.pixel] += path.hit.distance * dot(path.ray.direction, camera_.forward());
+        if (wood) {
+            aovs.woodHits[path.pixel] += 1;
+            aovs.growthTime[path.pixel] += wood->T;
+            aovs.knot[path.pixel] += wood->knot;
+        }
+        if (path.sample == 0) aovs.lamella[path.pixel] = path.lamella;
+    }
+
+    // Next-event estimation: every light, one sample each (scenes have a few lights; this
+    // is far less noisy than picking one of a sun and a sky at random).
+    if (woLocal.z > 0) {
+        for (size_t li = 0; li < scene_.lights.size(); ++li) {
+            const Light& light = scene_.lights[li];
+            LightSample ls;
+            uint64_t d = lightDims + kLightDims * li;
+            if (!sampleLight(light, path.hit.position, rnd(d), rnd(d + 1), ls) ||
+                dot(ls.direction, ng) <= 0)
+                continue;
+            Vec3 wiLocal = frame.toLocal(ls.direction);
+            Rgb f = bsdf.evaluate(woLocal, wiLocal);
+            if (isBlack(f) || isBlack(ls.radiance)) continue;
+            Ray shadow{offsetOrigin(path.hit.position, ng, ls.direction), ls.direction};
+            ++rayCount_;
+            double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
+            if (rays_.occluded(shadow, tMax)) continue;
+            double w = ls.delta ? 1 : powerHeuristic(ls.pdf, bsdf.pdf(woLocal, wiLocal));
+            Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * w / ls.pdf);
+            path.radiance = path.radiance + multiply(path.throughput, contribution);
+        }
+    }
+
+    // Continue the path.
+    SurfaceBsdf::Sample bs;
+    bool more =
+        path.depth + 1 < settings.maxDepth && bsdf.sample(woLocal, rnd(0), rnd(1), rnd(2), bs);
+    Vec3 wi = more ? frame.toWorld(bs.wi) : Vec3{};
+    if (more && dot(wi, ng) <= 0) more = false;
+    if (more) {
+        path.throughput = multiply(path.throughput, bs.weight);
+        if (path.depth >= 2) {
+            double q = std::min(0.95, maxComponent(path.throughput));
+            if (rnd(3) >= q)
+                more = false;
+            else
+                path.throughput = path.throughput * (1 / q);
+        }
+    }
+    if (!more || isBlack(path.throughput)) {
+        aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
+        path.alive = false;
+        return;
+    }
+    path.bsdfPdf = bs.pdf;
+    path.ray = {offsetOrigin(path.hit.position, ng, wi), wi};
+    ++path.depth;
+}
+
+}  // namespace
+
+Film renderScene(const Scene& scene, const RenderOptions& options, RenderStats& stats) {
+    const RenderSettings& settings = scene.settings;
+    auto start = std::chrono::steady_clock::now();
+    RayScene rays(scene);
+    Camera camera(scene.camera, settings.width, settings.height);
+    Film film;
+    film.resize(settings.width, settings.height);
+
+    const int tilesX = (settings.width + kTileSize - 1) / kTileSize;
+    const int tilesY = (settings.height + kTileSize - 1) / kTileSize;
+    const size_t tileCount = size_t(tilesX) * tilesY;
+    std::vector<RenderStats> tileStats(tileCount);
+    ProgressReporter progress(static_cast<long long>(tileCount), "Rendering", options.quiet);
+    parallelTiles(tileCount, options.threads, [&](size_t tile) {
+        int tx = static_cast<int>(tile % tilesX), ty = static_cast<int>(tile / tilesX);
+        int x0 = tx * kTileSize, y0 = ty * kTileSize;
+        int x1 = std::min(settings.width, x0 + kTileSize);
+        int y1 = std::min(settings.height, y0 + kTileSize);
+        TileRenderer renderer(scene, rays, camera);
+        renderer.render(x0, y0, x1, y1, film, tileStats[tile]);
+        progress.advance();
+    });
+    progress.done();
+    stats = {};
+    for (const RenderStats& s : tileStats) {
+        stats.cameraRays += s.cameraRays;
+        stats.rays += s.rays;
+    }
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return film;
+}
+
+}  // namespace nenrin

@@ -1,0 +1,36 @@
+#pragma once
+/// The integrator: unidirectional path tracing with next-event estimation and multiple
+/// importance sampling (power heuristic), Russian roulette past the third bounce, and a
+/// maximum depth.
+///
+/// Work is split into tiles of 16 x 16 pixels run in parallel (TBB). Inside a tile all samples
+/// of all pixels travel together, one bounce at a time, so that camera rays go to Embree in
+/// packets of 16 and the wood is evaluated in coherent batches (per lamella), which the growth
+/// field needs to be fast. Every random number is a pure function of (seed, pixel, sample,
+/// dimension): the image is bitwise the same for any number of threads.
+///
+/// Wood at the camera hit gets the full surface response (filtered rings, fibre highlight,
+/// relief bump); at later bounces, where the light is already blurred, only its albedo.
+
+#include <cstdint>
+
+#include "renderer/film.h"
+#include "renderer/scene.h"
+
+namespace nenrin {
+
+struct RenderOptions {
+    int threads = 0;  ///< 0 = all cores
+    bool quiet = false;
+};
+
+struct RenderStats {
+    double seconds = 0;
+    uint64_t cameraRays = 0;
+    uint64_t rays = 0;  ///< all rays traced: camera, bounce and shadow rays
+};
+
+/// Renders with scene.settings (resolution, spp, depth, seed).
+Film renderScene(const Scene& scene, const RenderOptions& options, RenderStats& stats);
+
+}  // namespace nenrin

@@ -1,0 +1,220 @@
+#include "renderer/ray_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace nenrin {
+
+namespace {
+
+/// What a geometry id stands for, and what shading needs of it.
+struct GeometryRecord {
+    bool isLight = false;
+    uint32_t index = 0;
+    std::vector<Vec3> normals;  ///< world-space vertex normals (meshes that have them)
+    std::vector<std::array<double, 2>> uvs;
+    std::vector<std::array<uint32_t, 3>> triangles;
+};
+
+/// The 12 triangles of a box [-s/2, s/2], wound so normals face outwards.
+void boxTriangles(const Vec3& size, std::vector<Vec3>& positions,
+                  std::vector<std::array<uint32_t, 3>>& triangles) {
+    Vec3 h = size * 0.5;
+    for (int i = 0; i < 8; ++i)
+        positions.push_back({i & 1 ? h.x : -h.x, i & 2 ? h.y : -h.y, i & 4 ? h.z : -h.z});
+    // Faces as (a, b, c, d) counter-clockwise seen from outside.
+    const uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                  {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (const auto& f : faces) {
+        triangles.push_back({f[0], f[1], f[2]});
+        triangles.push_back({f[0], f[2], f[3]});
+    }
+}
+
+SurfaceHit toHit(const RTCRay& ray, const RTCHit& h, const std::vector<GeometryRecord>& records) {
+    SurfaceHit s;
+    if (h.geomID == RTC_INVALID_GEOMETRY_ID) return s;
+    s.hit = true;
+    s.distance = ray.tfar;
+    s.position =
+        Vec3{ray.org_x, ray.org_y, ray.org_z} + Vec3{ray.dir_x, ray.dir_y, ray.dir_z} * ray.tfar;
+    s.geometricNormal = normalize(Vec3{h.Ng_x, h.Ng_y, h.Ng_z});
+    s.shadingNormal = s.geometricNormal;
+    const GeometryRecord& g = records[h.geomID];
+    s.isLight = g.isLight;
+    s.index = g.index;
+    const auto& t = g.triangles.empty() ? std::array<uint32_t, 3>{} : g.triangles[h.primID];
+    double w = 1 - h.u - h.v;
+    if (!g.normals.empty()) {
+        Vec3 n = g.normals[t[0]] * w + g.normals[t[1]] * h.u + g.normals[t[2]] * h.v;
+        if (lengthSquared(n) > 0) s.shadingNormal = normalize(n);
+    }
+    if (!g.uvs.empty()) {
+        s.u = g.uvs[t[0]][0] * w + g.uvs[t[1]][0] * h.u + g.uvs[t[2]][0] * h.v;
+        s.v = g.uvs[t[0]][1] * w + g.uvs[t[1]][1] * h.u + g.uvs[t[2]][1] * h.v;
+    }
+    return s;
+}
+
+}  // namespace
+
+struct RayScene::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    std::vector<GeometryRecord> records;
+    size_t triangles = 0;
+
+    void addTriangles(const std::vector<Vec3>& positions,
+                      const std::vector<std::array<uint32_t, 3>>& tris, GeometryRecord record) {
+        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                              RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                              positions.size()));
+        for (size_t i = 0; i < positions.size(); ++i) {
+            v[3 * i] = static_cast<float>(positions[i].x);
+            v[3 * i + 1] = static_cast<float>(positions[i].y);
+            v[3 * i + 2] = static_cast<float>(positions[i].z);
+        }
+        auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris.size()));
+        for (size_t i = 0; i < tris.size(); ++i)
+            for (int k = 0; k < 3; ++k) idx[3 * i + k] = tris[i][k];
+        rtcCommitGeometry(geom);
+        unsigned id = rtcAttachGeometry(scene, geom);
+        rtcReleaseGeometry(geom);
+        if (id != records.size()) throw std::logic_error("embree geometry ids out of order");
+        record.triangles = tris;
+        records.push_back(std::move(record));
+        triangles += tris.size();
+    }
+};
+
+RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
+    Impl& m = *impl_;
+    m.device = rtcNewDevice(nullptr);
+    if (!m.device) throw std::runtime_error("embree: could not create a device");
+    m.scene = rtcNewScene(m.device);
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& o = scene.objects[i];
+        std::vector<Vec3> positions;
+        std::vector<std::array<uint32_t, 3>> tris;
+        GeometryRecord record;
+        record.index = static_cast<uint32_t>(i);
+        if (o.shape == ShapeType::Box) {
+            boxTriangles(o.size, positions, tris);
+        } else {
+            positions = o.mesh->positions;
+            tris = o.mesh->triangles;
+            for (const Vec3& n : o.mesh->normals)
+                record.normals.push_back(normalize(o.worldFromObject.vector(n)));
+            record.uvs = o.mesh->uvs;
+        }
+        for (Vec3& p : positions) p = o.worldFromObject.point(p);
+        m.addTriangles(positions, tris, std::move(record));
+    }
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& l = scene.lights[i];
+        if (l.type != LightType::Rect) continue;
+        GeometryRecord record;
+        record.isLight = true;
+        record.index = static_cast<uint32_t>(i);
+        std::vector<Vec3> positions{l.corner, l.corner + l.edgeU, l.corner + l.edgeU + l.edgeV,
+                                    l.corner + l.edgeV};
+        m.addTriangles(positions, {{0, 1, 2}, {0, 2, 3}}, std::move(record));
+    }
+    rtcSetSceneBuildQuality(m.scene, RTC_BUILD_QUALITY_HIGH);
+    rtcCommitScene(m.scene);
+}
+
+RayScene::~RayScene() {
+    if (impl_->scene) rtcReleaseScene(impl_->scene);
+    if (impl_->device) rtcReleaseDevice(impl_->device);
+}
+
+size_t RayScene::triangleCount() const { return impl_->triangles; }
+
+SurfaceHit RayScene::intersect(const Ray& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray.org_x = float(ray.origin.x);
+    rh.ray.org_y = float(ray.origin.y);
+    rh.ray.org_z = float(ray.origin.z);
+    rh.ray.dir_x = float(ray.direction.x);
+    rh.ray.dir_y = float(ray.direction.y);
+    rh.ray.dir_z = float(ray.direction.z);
+    rh.ray.tnear = 0;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->scene, &context, &rh);
+    return toHit(rh.ray, rh.hit, impl_->records);
+}
+
+void RayScene::intersect16(const Ray* rays, int count, SurfaceHit* hits) const {
+    alignas(64) int valid[16];
+    alignas(64) RTCRayHit16 rh;
+    for (int i = 0; i < 16; ++i) {
+        valid[i] = i < count ? -1 : 0;
+        const Ray& r = rays[i < count ? i : 0];
+        rh.ray.org_x[i] = float(r.origin.x);
+        rh.ray.org_y[i] = float(r.origin.y);
+        rh.ray.org_z[i] = float(r.origin.z);
+        rh.ray.dir_x[i] = float(r.direction.x);
+        rh.ray.dir_y[i] = float(r.direction.y);
+        rh.ray.dir_z[i] = float(r.direction.z);
+        rh.ray.tnear[i] = 0;
+        rh.ray.tfar[i] = std::numeric_limits<float>::infinity();
+        rh.ray.mask[i] = ~0u;
+        rh.ray.time[i] = 0;
+        rh.ray.flags[i] = 0;
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect16(valid, impl_->scene, &context, &rh);
+    for (int i = 0; i < count; ++i) {
+        RTCRay ray{};
+        ray.org_x = rh.ray.org_x[i];
+        ray.org_y = rh.ray.org_y[i];
+        ray.org_z = rh.ray.org_z[i];
+        ray.dir_x = rh.ray.dir_x[i];
+        ray.dir_y = rh.ray.dir_y[i];
+        ray.dir_z = rh.ray.dir_z[i];
+        ray.tfar = rh.ray.tfar[i];
+        RTCHit hit{};
+        hit.Ng_x = rh.hit.Ng_x[i];
+        hit.Ng_y = rh.hit.Ng_y[i];
+        hit.Ng_z = rh.hit.Ng_z[i];
+        hit.u = rh.hit.u[i];
+        hit.v = rh.hit.v[i];
+        hit.primID = rh.hit.primID[i];
+        hit.geomID = rh.hit.geomID[i];
+        hits[i] = toHit(ray, hit, impl_->records);
+    }
+}
+
+bool RayScene::occluded(const Ray& ray, double tMax) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r{};
+    r.org_x = float(ray.origin.x);
+    r.org_y = float(ray.origin.y);
+    r.org_z = float(ray.origin.z);
+    r.dir_x = float(ray.direction.x);
+    r.dir_y = float(ray.direction.y);
+    r.dir_z = float(ray.direction.z);
+    r.tnear = 0;
+    r.tfar = float(tMax);
+    r.mask = ~0u;
+    rtcOccluded1(impl_->scene, &context, &r);
+    return r.tfar < 0;
+}
+
+}  // namespace nenrin

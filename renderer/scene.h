@@ -1,0 +1,96 @@
+#pragma once
+/// A loaded scene: camera, render settings, lights, materials, objects, and the trees their
+/// wood comes from. Built by loadScene (scene_file.h) from the JSON described in
+/// docs/scene-format.md; immutable while rendering.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "grain/growth_field.h"
+#include "renderer/environment_map.h"
+#include "renderer/laminated_product.h"
+#include "renderer/obj_mesh.h"
+#include "renderer/rigid_transform.h"
+#include "shader/wood_shader.h"
+#include "skeleton/skeleton_index.h"
+
+namespace nenrin {
+
+struct CameraSpec {
+    Vec3 position{0, 1, 3};
+    Vec3 lookAt{0, 0, 0};
+    Vec3 up{0, 1, 0};
+    double verticalFov = radians(40);  ///< radians
+    double apertureRadius = 0;         ///< m: 0 = pinhole
+    double focusDistance = 0;          ///< m: 0 = distance to lookAt
+};
+
+struct RenderSettings {
+    int width = 640, height = 400;
+    int spp = 16;
+    int maxDepth = 6;  ///< path vertices after the camera
+    uint64_t seed = 1;
+};
+
+enum class LightType { Distant, Point, Rect, Environment };
+
+struct Light {
+    LightType type = LightType::Distant;
+    /// Distant: irradiance on a surface facing it (W/m^2 per channel); point: intensity
+    /// (W/sr); rect: emitted radiance (one-sided, along normal).
+    Rgb power;
+    Vec3 direction;                     ///< distant: unit vector towards the light
+    Vec3 position;                      ///< point
+    Vec3 corner, edgeU, edgeV, normal;  ///< rect: normal = normalize(edgeU x edgeV)
+    double area = 0;
+    std::shared_ptr<const EnvironmentMap> environment;
+};
+
+enum class MaterialType { Diffuse, Glossy, Metal, Wood };
+
+struct Material {
+    std::string name;
+    MaterialType type = MaterialType::Diffuse;
+    Rgb colour{0.7, 0.7, 0.7};
+    double roughness = 0.2;            ///< GGX alpha of the coat / metal
+    const WoodShader* wood = nullptr;  ///< wood only
+};
+
+/// A skeleton with its grain: the tree every wood material of that pair cuts from.
+struct WoodTree {
+    std::string skeletonFile, grainFile;
+    Skeleton skeleton;
+    GrainParams grain;
+    std::unique_ptr<SkeletonIndex> index;
+    std::unique_ptr<GrowthField> field;
+};
+
+enum class ShapeType { Box, Mesh };
+
+struct SceneObject {
+    std::string name;
+    std::string type;  ///< as in the file: box, mesh, glulam, clt, table_top
+    ShapeType shape = ShapeType::Box;
+    RigidTransform worldFromObject;
+    Vec3 size;  ///< box: full extents in object space
+    std::shared_ptr<const TriangleMesh> mesh;
+    uint32_t material = 0;
+    /// Wood: laminated products map each lamella on its own; other objects use treeFromObject.
+    std::shared_ptr<const LaminatedLayout> layout;
+    RigidTransform treeFromObject;
+};
+
+struct Scene {
+    std::string file;
+    CameraSpec camera;
+    RenderSettings settings;
+    std::vector<Light> lights;
+    std::vector<Material> materials;
+    std::vector<std::unique_ptr<WoodTree>> trees;
+    std::vector<std::unique_ptr<WoodShader>> woodShaders;
+    std::vector<SceneObject> objects;
+};
+
+}  // namespace nenrin

@@ -1,0 +1,373 @@
+#include "renderer/scene_file.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "grain/grain_params.h"
+#include "renderer/cut_plan.h"
+#include "skeleton/skeleton_file.h"
+#include "util/json_reader.h"
+
+namespace nenrin {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Caps that catch typos (an extra zero) before they cost hours or all memory.
+constexpr int kMaxSide = 16384;
+constexpr long long kMaxPixels = 1LL << 26;
+constexpr int kMaxSpp = 1 << 16;
+constexpr int kMaxLamellae = 100000;
+
+std::string resolve(const std::string& sceneFile, const std::string& relative) {
+    fs::path p(relative);
+    if (p.is_absolute()) return relative;
+    return (fs::path(sceneFile).parent_path() / p).lexically_normal().string();
+}
+
+/// A colour: [r, g, b] or one number for grey, each >= 0.
+Rgb colourOf(JsonReader& r, const std::string& key, const Rgb& fallback) {
+    if (!r.has(key)) return fallback;
+    if (r.isNumber(key)) {
+        double v = r.nonNegative(key, 0);
+        return {v, v, v};
+    }
+    Vec3 v = r.vec3(key, {});
+    if (v.x < 0 || v.y < 0 || v.z < 0) throw r.error(key, "expected colour components >= 0");
+    return {v.x, v.y, v.z};
+}
+
+Vec3 unitVector(JsonReader& r, const std::string& key, const Vec3& fallback) {
+    Vec3 v = r.vec3(key, fallback);
+    if (lengthSquared(v) < 1e-20) throw r.error(key, "expected a non-zero vector");
+    return normalize(v);
+}
+
+/// "position" and "rotate" ([x, y, z] degrees, applied about x, then y, then z).
+RigidTransform placement(JsonReader& r, const std::string& positionKey = "position") {
+    Vec3 angles = r.vec3("rotate", {});
+    RigidTransform t = RigidTransform::rotation({0, 0, 1}, radians(angles.z)) *
+                       RigidTransform::rotation({0, 1, 0}, radians(angles.y)) *
+                       RigidTransform::rotation({1, 0, 0}, radians(angles.x));
+    t.origin = r.vec3(positionKey, {});
+    return t;
+}
+
+CameraSpec readCamera(JsonReader& r) {
+    CameraSpec c;
+    c.position = r.requireVec3("position");
+    c.lookAt = r.requireVec3("look_at");
+    c.up = unitVector(r, "up", {0, 1, 0});
+    c.verticalFov = radians(r.inRange("fov", 40, 0.01, 179));
+    c.apertureRadius = r.nonNegative("aperture_radius", 0);
+    c.focusDistance = r.nonNegative("focus_distance", 0);
+    Vec3 forward = c.lookAt - c.position;
+    if (lengthSquared(forward) < 1e-20) throw r.error("look_at", "must differ from position");
+    if (lengthSquared(cross(normalize(forward), c.up)) < 1e-12)
+        throw r.error("up", "must not be parallel to the view direction");
+    r.finish();
+    return c;
+}
+
+RenderSettings readSettings(JsonReader& r) {
+    RenderSettings s;
+    if (r.has("resolution")) {
+        std::vector<double> res = r.numberList("resolution");
+        if (res.size() != 2 || res[0] != std::floor(res[0]) || res[1] != std::floor(res[1]) ||
+            res[0] < 1 || res[1] < 1 || res[0] > kMaxSide || res[1] > kMaxSide ||
+            res[0] * res[1] > double(kMaxPixels))
+            throw r.error("resolution",
+                          fmt::format("expected [width, height], whole numbers in 1..{} and at "
+                                      "most {} pixels",
+                                      kMaxSide, kMaxPixels));
+        s.width = static_cast<int>(res[0]);
+        s.height = static_cast<int>(res[1]);
+    }
+    s.spp = static_cast<int>(r.integer("spp", s.spp, 1, kMaxSpp));
+    s.maxDepth = static_cast<int>(r.integer("max_depth", s.maxDepth, 1, 64));
+    s.seed = static_cast<uint64_t>(r.integer("seed", 1, 0, (1LL << 53)));
+    r.finish();
+    return s;
+}
+
+Light readLight(JsonReader& r, const std::string& sceneFile) {
+    Light l;
+    std::string type = r.choice("type", "", {"distant", "sun", "point", "rect", "environment"});
+    Rgb colour = colourOf(r, "colour", {1, 1, 1});
+    if (type == "distant" || type == "sun") {
+        l.type = LightType::Distant;
+        l.direction = unitVector(r, "direction", {0, 1, 0});
+        if (!r.has("direction"))
+            throw r.error("direction", "missing: the direction towards the light");
+        double e = r.nonNegative("irradiance", 3);
+        l.power = colour * e;
+    } else if (type == "point") {
+        l.type = LightType::Point;
+        l.position = r.requireVec3("position");
+        l.power = colour * r.nonNegative("intensity", 1);
+    } else if (type == "rect") {
+        l.type = LightType::Rect;
+        l.corner = r.requireVec3("corner");
+        l.edgeU = r.requireVec3("edge_u");
+        l.edgeV = r.requireVec3("edge_v");
+        Vec3 n = cross(l.edgeU, l.edgeV);
+        l.area = length(n);
+        if (!(l.area > 1e-12)) throw r.error("edge_v", "the rectangle has no area");
+        l.normal = n / l.area;
+        l.power = colour * r.nonNegative("radiance", 1);
+    } else {
+        l.type = LightType::Environment;
+        double intensity = r.nonNegative("intensity", 1);
+        if (r.has("map")) {
+            std::string map = resolve(sceneFile, r.string("map", ""));
+            l.environment = std::make_shared<EnvironmentMap>(
+                EnvironmentMap::load(map, intensity, radians(r.number("rotation", 0))));
+            if (r.has("colour")) throw r.error("colour", "use either \"map\" or \"colour\"");
+        } else {
+            l.environment =
+                std::make_shared<EnvironmentMap>(EnvironmentMap::constant(colour * intensity));
+        }
+    }
+    r.finish();
+    return l;
+}
+
+/// Loads (once per skeleton + grain pair) the tree a wood material cuts from.
+const WoodTree& woodTree(Scene& scene, const std::string& skeletonFile,
+                         const std::string& grainFile) {
+    for (const auto& t : scene.trees)
+        if (t->skeletonFile == skeletonFile && t->grainFile == grainFile) return *t;
+    auto t = std::make_unique<WoodTree>();
+    t->skeletonFile = skeletonFile;
+    t->grainFile = grainFile;
+    t->skeleton = loadSkeletonFile(skeletonFile);
+    t->grain = grainFile.empty() ? GrainParams{} : loadGrainFile(grainFile);
+    t->index = std::make_unique<SkeletonIndex>(t->skeleton);
+    t->field = std::make_unique<GrowthField>(*t->index, t->grain);
+    scene.trees.push_back(std::move(t));
+    return *scene.trees.back();
+}
+
+Material readMaterial(JsonReader& r, Scene& scene) {
+    Material m;
+    m.name = r.string("name", "");
+    if (m.name.empty()) throw r.error("name", "missing: every material needs a name");
+    std::string type = r.choice("type", "", {"diffuse", "glossy", "metal", "wood"});
+    if (type == "wood") {
+        m.type = MaterialType::Wood;
+        if (!r.has("skeleton")) throw r.error("skeleton", "missing: the skeleton JSON file");
+        std::string skeleton = resolve(scene.file, r.string("skeleton", ""));
+        std::string grain = r.has("grain") ? resolve(scene.file, r.string("grain", "")) : "";
+        Finish finish;
+        std::string preset = r.string("finish", "oiled");
+        if (!finishPreset(preset, finish))
+            throw r.error("finish", fmt::format("expected one of {}, found \"{}\"",
+                                                finishPresetNames(), preset));
+        const WoodTree& tree = woodTree(scene, skeleton, grain);
+        scene.woodShaders.push_back(std::make_unique<WoodShader>(*tree.field, finish));
+        m.wood = scene.woodShaders.back().get();
+    } else {
+        m.type = type == "diffuse"  ? MaterialType::Diffuse
+                 : type == "glossy" ? MaterialType::Glossy
+                                    : MaterialType::Metal;
+        m.colour = colourOf(r, "colour", m.colour);
+        if (m.colour.r > 1 || m.colour.g > 1 || m.colour.b > 1)
+            throw r.error("colour", "expected reflectances in [0, 1]");
+        if (m.type != MaterialType::Diffuse) m.roughness = r.inRange("roughness", 0.2, 0.001, 1);
+    }
+    r.finish();
+    return m;
+}
+
+CutPlanParams readCutPlan(JsonReader& parent) {
+    CutPlanParams c;
+    auto r = parent.object("cut");
+    if (!r) return c;
+    c.seed = static_cast<uint64_t>(r->integer("seed", 1, 0, (1LL << 53)));
+    std::string sawing = r->choice("sawing", "mixed", {"flat", "quarter", "mixed"});
+    c.sawing = sawing == "flat"      ? Sawing::Flat
+               : sawing == "quarter" ? Sawing::Quarter
+                                     : Sawing::Mixed;
+    c.bottom = r->nonNegative("bottom", c.bottom);
+    c.top = r->nonNegative("top", 0);
+    if (c.top > 0 && c.top <= c.bottom) throw r->error("top", "must lie above \"bottom\"");
+    c.maxRadius = r->positive("max_radius", c.maxRadius);
+    c.margin = r->nonNegative("margin", c.margin);
+    r->finish();
+    return c;
+}
+
+/// Every board of the layout gets its cut from the log and a scene-wide id.
+void cutLamellae(LaminatedLayout& layout, const GrowthField& field, const CutPlanParams& plan,
+                 int32_t& nextId, const JsonReader& where) {
+    for (size_t i = 0; i < layout.lamellae.size(); ++i) {
+        Lamella& l = layout.lamellae[i];
+        Vec3 extent = l.upper - l.lower;
+        int widthAxis = l.lengthAxis == 0 ? 2 : 0;
+        double length = extent[l.lengthAxis], width = extent[widthAxis], thickness = extent.y;
+        auto cut = cutBoard(field, plan, length, width, thickness, i);
+        if (!cut) {
+            double lo, hi;
+            trunkHeightRange(field.skeleton(), lo, hi);
+            throw where.error(
+                "cut", fmt::format("board {} ({:.3g} x {:.3g} x {:.3g} m) does not fit in the "
+                                   "log between heights {:.3g} and {:.3g} m of a {:.3g} m trunk: "
+                                   "use smaller boards, another height window or a later "
+                                   "felling time",
+                                   i, length, width, thickness, plan.bottom,
+                                   plan.top > 0 ? plan.top : lo + 0.7 * (hi - lo), hi - lo));
+        }
+        l.id = nextId++;
+        l.treeFromLamella = cut->treeFromLamella;
+        l.treeFromProduct = l.treeFromLamella * l.lamellaFromProduct;
+    }
+}
+
+/// Where solid (not laminated) wood sits in the tree: by default the object's +y (up in the
+/// scene) runs along the trunk (+z in tree space), its origin on the pith at height 1 m.
+RigidTransform readLogPlacement(JsonReader& parent) {
+    RigidTransform treeFromObject =
+        RigidTransform::fromAxes({1, 0, 0}, {0, 0, 1}, {0, -1, 0}, {0, 0, 1});
+    auto r = parent.object("log");
+    if (!r) return treeFromObject;
+    const bool hasPosition = r->has("position");
+    RigidTransform place = placement(*r);
+    if (!hasPosition) place.origin = {0, 0, 1};
+    r->finish();
+    // "position" is in tree space, "rotate" turns the object before it is placed.
+    RigidTransform rotateObject = place;
+    rotateObject.origin = {};
+    RigidTransform t = treeFromObject * rotateObject;
+    t.origin = place.origin;
+    return t;
+}
+
+SceneObject readObject(JsonReader& r, Scene& scene,
+                       const std::map<std::string, uint32_t>& materials, int32_t& nextLamella) {
+    SceneObject o;
+    o.type = r.choice("type", "", {"box", "mesh", "glulam", "clt", "table_top"});
+    o.name = r.string("name", fmt::format("{}{}", o.type, scene.objects.size()));
+    std::string materialName = r.string("material", "");
+    auto m = materials.find(materialName);
+    if (m == materials.end())
+        throw r.error("material", materialName.empty()
+                                      ? "missing: the name of a material"
+                                      : fmt::format("no material named \"{}\"", materialName));
+    o.material = m->second;
+    const Material& material = scene.materials[o.material];
+    o.worldFromObject = placement(r);
+    const bool wood = material.type == MaterialType::Wood;
+
+    if (o.type == "box" || o.type == "mesh") {
+        if (o.type == "box") {
+            o.size = r.requireVec3("size");
+            if (!(o.size.x > 0 && o.size.y > 0 && o.size.z > 0))
+                throw r.error("size", "expected three sizes > 0");
+        } else {
+            o.shape = ShapeType::Mesh;
+            if (!r.has("file")) throw r.error("file", "missing: the OBJ file");
+            auto mesh = std::make_shared<TriangleMesh>(
+                loadObjMesh(resolve(scene.file, r.string("file", ""))));
+            double scale = r.positive("scale", 1);
+            for (Vec3& p : mesh->positions) p = p * scale;
+            o.mesh = mesh;
+        }
+        if (wood) o.treeFromObject = readLogPlacement(r);
+        r.finish();
+        return o;
+    }
+
+    if (!wood)
+        throw r.error("material",
+                      fmt::format("a {} is made of boards: it needs a wood material", o.type));
+    std::shared_ptr<LaminatedLayout> layout;
+    if (o.type == "glulam") {
+        int count = static_cast<int>(r.integer("lamellae", 6, 1, 200));
+        double thickness = r.positive("lamella_thickness", 0.04);
+        double width = r.positive("width", 0.14);
+        double length = r.positive("length", 2.0);
+        double minPiece = 0, maxPiece = 0;
+        FingerJointProfile fingers;
+        if (r.isBoolean("finger_joints")) {
+            if (r.boolean("finger_joints", false))
+                throw r.error("finger_joints", "expected false or an object {min_length, ...}");
+        } else if (auto f = r.object("finger_joints")) {
+            minPiece = f->positive("min_length", 0.9);
+            maxPiece = f->positive("max_length", 2.4);
+            if (maxPiece < minPiece) throw f->error("max_length", "must be >= min_length");
+            fingers.length = f->nonNegative("finger_length", fingers.length);
+            fingers.pitch = f->positive("pitch", fingers.pitch);
+            f->finish();
+        }
+        CutPlanParams plan = readCutPlan(r);
+        layout = std::make_shared<LaminatedLayout>(
+            glulamLayout(count, thickness, width, length, minPiece, maxPiece, plan.seed));
+        layout->fingers = fingers;
+        cutLamellae(*layout, material.wood->field(), plan, nextLamella, r);
+    } else if (o.type == "clt") {
+        int layers = static_cast<int>(r.integer("layers", 5, 1, 99));
+        if (layers % 2 == 0) throw r.error("layers", "expected an odd number of crossed layers");
+        double thickness = r.positive("layer_thickness", 0.03);
+        double boardWidth = r.positive("board_width", 0.15);
+        double length = r.positive("length", 1.2), width = r.positive("width", 0.9);
+        if (std::ceil(length / boardWidth) * std::ceil(width / boardWidth) * layers > kMaxLamellae)
+            throw r.error("board_width", "too many boards (over 100000)");
+        CutPlanParams plan = readCutPlan(r);
+        layout = std::make_shared<LaminatedLayout>(
+            cltLayout(layers, thickness, boardWidth, length, width));
+        cutLamellae(*layout, material.wood->field(), plan, nextLamella, r);
+    } else {
+        int boards = static_cast<int>(r.integer("boards", 6, 1, 1000));
+        double thickness = r.positive("thickness", 0.03);
+        double width = r.positive("width", 0.8), length = r.positive("length", 1.6);
+        CutPlanParams plan = readCutPlan(r);
+        layout =
+            std::make_shared<LaminatedLayout>(edgeGluedLayout(boards, thickness, width, length));
+        cutLamellae(*layout, material.wood->field(), plan, nextLamella, r);
+    }
+    o.size = layout->size;
+    o.layout = layout;
+    r.finish();
+    return o;
+}
+
+}  // namespace
+
+std::unique_ptr<Scene> loadScene(const std::string& path) {
+    auto scene = std::make_unique<Scene>();
+    scene->file = path;
+    nlohmann::json json = parseJsonFile(path);
+    JsonReader root(json, path);
+    root.string("description", "");
+    if (auto c = root.object("camera"))
+        scene->camera = readCamera(*c);
+    else
+        throw root.error("camera", "missing: {position, look_at, fov}");
+    if (auto s = root.object("render")) scene->settings = readSettings(*s);
+
+    for (JsonReader& l : root.objectList("lights")) scene->lights.push_back(readLight(l, path));
+    int environments = 0;
+    for (const Light& l : scene->lights) environments += l.type == LightType::Environment;
+    if (environments > 1) throw root.error("lights", "at most one environment light");
+
+    std::map<std::string, uint32_t> materials;
+    for (JsonReader& m : root.objectList("materials")) {
+        Material material = readMaterial(m, *scene);
+        if (materials.count(material.name))
+            throw m.error("name", fmt::format("a second material named \"{}\"", material.name));
+        materials[material.name] = static_cast<uint32_t>(scene->materials.size());
+        scene->materials.push_back(std::move(material));
+    }
+    int32_t nextLamella = 0;
+    for (JsonReader& o : root.objectList("objects"))
+        scene->objects.push_back(readObject(o, *scene, materials, nextLamella));
+    if (scene->objects.empty()) throw root.error("objects", "the scene has no objects");
+    root.finish();
+    return scene;
+}
+
+}  // namespace nenrin

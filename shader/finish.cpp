@@ -1,0 +1,31 @@
+#include "shader/finish.h"
+
+namespace nenrin {
+
+bool finishPreset(const std::string& name, Finish& f) {
+    f = Finish{};
+    f.name = name;
+    if (name == "matte") {
+        // Sanded, unfinished: a rough sheen, a broad fibre glow, the most relief.
+        f.coatWeight = 0.6;
+        f.coatRoughness = 0.45;
+        f.fibreStrength = 0.18;
+        f.fibreWidth = 0.22;
+        f.bumpDepth = 6e-6;
+        return true;
+    }
+    if (name == "oiled") return true;  // the defaults
+    if (name == "varnished") {
+        // A thick film: a sharp coat reflection, relief mostly filled in.
+        f.coatRoughness = 0.03;
+        f.fibreStrength = 0.3;
+        f.fibreWidth = 0.1;
+        f.bumpDepth = 1.5e-6;
+        return true;
+    }
+    return false;
+}
+
+const char* finishPresetNames() { return "matte, oiled, varnished"; }
+
+}  // namespace nenrin

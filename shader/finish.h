@@ -1,0 +1,26 @@
+#pragma once
+/// Clear finishes over bare wood: a GGX coat layer (the film of oil or varnish), the strength
+/// and width of the fibre highlight seen through it, and the late-wood relief left after
+/// sanding. Presets carry the values documented in docs/render-format.md.
+
+#include <string>
+
+namespace nenrin {
+
+struct Finish {
+    std::string name = "oiled";
+    double coatWeight = 1;        ///< 0 = no coat (bare wood), 1 = a full clear film
+    double coatRoughness = 0.12;  ///< GGX alpha of the coat
+    double coatIor = 1.5;         ///< refractive index of the film (and of the wood fibres)
+    double fibreStrength = 0.35;  ///< albedo-tinted fibre highlight (Marschner et al. 2005)
+    double fibreWidth = 0.14;     ///< radians: Gaussian width beta of that highlight
+    double bumpDepth = 4e-6;      ///< m: height of late wood above early wood
+    double woodRoughness = 0.55;  ///< GGX alpha of the bare wood (reported to plugin hosts)
+};
+
+/// "matte" (bare, sanded), "oiled", "varnished". Returns false for an unknown name.
+bool finishPreset(const std::string& name, Finish& out);
+/// The preset names, comma separated, for error messages.
+const char* finishPresetNames();
+
+}  // namespace nenrin

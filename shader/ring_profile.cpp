@@ -1,0 +1,48 @@
+#include "shader/ring_profile.h"
+
+#include <cmath>
+
+#include "grain/growth_terms.h"
+
+namespace nenrin {
+
+namespace {
+constexpr int kTableSize = 1024;
+}
+
+RingProfile::RingProfile(double exponent) : exponent_(exponent), cumulative_(kTableSize + 1) {
+    // Simpson's rule on each table interval: E is smooth inside a ring, so the table's own
+    // error (~1e-12) is far below anything visible; lookups interpolate linearly between
+    // entries, exact for the integral up to O(1/N^2) of E's curvature.
+    cumulative_[0] = 0;
+    for (int i = 0; i < kTableSize; ++i) {
+        double a = double(i) / kTableSize, b = double(i + 1) / kTableSize;
+        double ea = lateWoodFraction(a, exponent), eb = lateWoodFraction(b - 1e-15, exponent);
+        double em = lateWoodFraction(0.5 * (a + b), exponent);
+        cumulative_[i + 1] = cumulative_[i] + (b - a) * (ea + 4 * em + eb) / 6;
+    }
+}
+
+double RingProfile::lateWood(double T) const { return lateWoodFraction(T, exponent_); }
+
+double RingProfile::integral(double T) const {
+    double rings = std::floor(T);
+    double u = (T - rings) * kTableSize;
+    int i = static_cast<int>(u);
+    if (i >= kTableSize) i = kTableSize - 1;
+    double within = cumulative_[i] + (u - i) * (cumulative_[i + 1] - cumulative_[i]);
+    return rings * cumulative_.back() + within;
+}
+
+double RingProfile::filtered(double T, double width) const {
+    // Below a 1/200 of a ring the table's interpolation error would dominate: sample E.
+    if (!(width > 5e-3)) return lateWood(T);
+    return (integral(T + 0.5 * width) - integral(T - 0.5 * width)) / width;
+}
+
+double RingProfile::filteredSlope(double T, double width) const {
+    if (!(width > 5e-3)) width = 5e-3;
+    return (lateWood(T + 0.5 * width) - lateWood(T - 0.5 * width)) / width;
+}
+
+}  // namespace nenrin
