@@ -79,6 +79,10 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
             width =
                 std::max(std::abs(dot(o.gradientT, f.dpdx)), std::abs(dot(o.gradientT, f.dpdy)));
             size = std::sqrt(std::max(lengthSquared(f.dpdx), lengthSquared(f.dpdy)));
+            if (size == 0 && f.diameter > 0) {
+                width = length(o.gradientT) * f.diameter;
+                size = f.diameter;
+            }
         }
         o.ringFilterWidth = width;
         o.lateWood = rings_.filtered(s.T, width);

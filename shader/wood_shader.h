@@ -26,9 +26,11 @@ struct WoodSample {
 };
 
 /// Tree-space offsets from a shading point to the surface points seen through the
-/// neighbouring pixels (ray differentials). Zero = a point sample.
+/// neighbouring pixels (ray differentials), or an isotropic footprint diameter for hosts
+/// without differentials (used when both offsets are zero). All zero = a point sample.
 struct SurfaceFootprint {
     Vec3 dpdx, dpdy;
+    double diameter = 0;  ///< m
 };
 
 struct WoodSurfaceSample {
