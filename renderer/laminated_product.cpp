@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "util/hash.h"
 
@@ -91,6 +92,33 @@ uint32_t LaminatedLayout::lamellaAt(const Vec3& p) const {
         along -= fingers.length * (triangleWave((s - strip.lower) / fingers.pitch) - 0.5);
     }
     return strip.lamellae[intervalOf(strip.pieceEnds, along)];
+}
+
+double LaminatedLayout::glueDistance(const Vec3& p) const {
+    double best = std::numeric_limits<double>::infinity();
+    size_t li = 0;
+    while (li + 1 < layers.size() && p.y > layers[li].upper) ++li;
+    const Layer& layer = layers[li];
+    if (li > 0) best = std::min(best, std::abs(p.y - layer.lower));
+    if (li + 1 < layers.size()) best = std::min(best, std::abs(layer.upper - p.y));
+    const int stripAxis = layer.lengthAxis == 0 ? 2 : 0;
+    double s = p[stripAxis];
+    size_t si = 0;
+    while (si + 1 < layer.strips.size() && s > layer.strips[si].upper) ++si;
+    const Strip& strip = layer.strips[si];
+    if (si > 0) best = std::min(best, std::abs(s - strip.lower));
+    if (si + 1 < layer.strips.size()) best = std::min(best, std::abs(strip.upper - s));
+    if (strip.pieceEnds.size() > 1) {
+        double along = p[layer.lengthAxis];
+        if (fingers.length > 0)
+            along -= fingers.length * (triangleWave((s - strip.lower) / fingers.pitch) - 0.5);
+        // The zig-zag's slope makes the true distance smaller than the one along the board.
+        double slope = fingers.length > 0 ? 2 * fingers.length / fingers.pitch : 0;
+        double scale = 1 / std::sqrt(1 + slope * slope);
+        for (size_t k = 0; k + 1 < strip.pieceEnds.size(); ++k)
+            best = std::min(best, std::abs(along - strip.pieceEnds[k]) * scale);
+    }
+    return best;
 }
 
 LaminatedLayout glulamLayout(int count, double thickness, double width, double length,

@@ -26,6 +26,12 @@ struct Lamella {
     RigidTransform treeFromProduct;  ///< treeFromLamella * lamellaFromProduct
 };
 
+/// The glue line between boards: a thin film of adhesive seen on every face that cuts it.
+struct GlueLine {
+    double width = 0.0003;                  ///< m: 0 = invisible (e.g. clear PUR)
+    double colour[3] = {0.16, 0.10, 0.05};  ///< scene-linear (dark MUF/PRF adhesives)
+};
+
 struct FingerJointProfile {
     double length = 0.015;  ///< m: finger length (0 = butt joints)
     double pitch = 0.006;   ///< m: finger spacing across the board
@@ -48,6 +54,11 @@ public:
     std::vector<Layer> layers;
     std::vector<Lamella> lamellae;
     FingerJointProfile fingers;
+    GlueLine glue;
+
+    /// Distance (m) from a point of the block to the nearest glued boundary between two of
+    /// its boards (finger joints approximately: along the board's length axis).
+    double glueDistance(const Vec3& productPoint) const;
 
     /// The lamella holding a point of the block (clamped into the block). Finger joints are
     /// zig-zag: the boundary between two pieces moves by up to fingers.length along the board,

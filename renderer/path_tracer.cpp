@@ -23,6 +23,7 @@ constexpr int kTileSize = 16;
 constexpr uint64_t kLightDims = 2;
 /// Bounces are spaced far apart so a scene's light count never makes two bounces share one.
 constexpr uint64_t kDimsPerBounce = 1 << 16;
+constexpr double kRegularisedRoughness = 0.3;
 constexpr Rgb kBarkColour{0.06, 0.04, 0.03};
 
 /// The counter-based random number for (pixel, sample, dimension).
@@ -50,6 +51,15 @@ struct Frame {
     Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
 };
 
+/// Share of a footprint of diameter `footprint` centred `distance` from the middle of a line
+/// of `width`: the box-filtered glue line, so it neither aliases nor vanishes far away.
+double glueCoverage(double distance, double width, double footprint) {
+    if (footprint <= 1e-3 * width) return distance <= 0.5 * width ? 1 : 0;
+    double overlap = std::min(distance + 0.5 * width, 0.5 * footprint) -
+                     std::max(distance - 0.5 * width, -0.5 * footprint);
+    return std::clamp(overlap / footprint, 0.0, 1.0);
+}
+
 /// Ray origin nudged off the surface along the geometric normal, to the side of `towards`.
 Vec3 offsetOrigin(const Vec3& p, const Vec3& ng, const Vec3& towards) {
     double scale = 1e-5 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
@@ -72,6 +82,12 @@ struct PathState {
     int32_t lamella = -1;
     const RigidTransform* treeFromObject = nullptr;
     const RigidTransform* worldFromObject = nullptr;
+    const GlueLine* glue = nullptr;  ///< laminated products
+    double glueDistance = 0;         ///< m, to the nearest glued boundary
+    double glueCover = 0;            ///< share of the footprint on the glue line
+    /// Path regularisation: after a diffuse bounce, glossy lobes are at least this rough, so
+    /// sun glints seen through diffuse bounces (caustics) blur instead of sparkling.
+    double minRoughness = 0;
 };
 
 /// Per-pixel AOV accumulators of one tile.
@@ -228,11 +244,16 @@ void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
         path.worldFromObject = &object.worldFromObject;
         path.lamella = -1;
         path.treeFromObject = &object.treeFromObject;
+        path.glue = nullptr;
         if (object.layout) {
             Vec3 local = object.worldFromObject.inverse().point(path.hit.position);
             const Lamella& l = object.layout->lamellae[object.layout->lamellaAt(local)];
             path.lamella = l.id;
             path.treeFromObject = &l.treeFromProduct;
+            if (object.layout->glue.width > 0) {
+                path.glue = &object.layout->glue;
+                path.glueDistance = object.layout->glueDistance(local);
+            }
         }
         if (scene_.materials[path.material].type == MaterialType::Wood) woodPaths.push_back(i);
     }
@@ -308,6 +329,16 @@ void TileRenderer::shadeWood(std::vector<PathState>& paths,
         }
         const RigidTransform worldFromTree = treeFromWorld.inverse();
         for (size_t k = 0; k < n; ++k) {
+            PathState& p = paths[woodPaths[order[begin + k]]];
+            if (p.glue) {
+                double footprint = 0;
+                if (camera)
+                    footprint = std::sqrt(std::max(lengthSquared(woodFootprints_[k].dpdx),
+                                                   lengthSquared(woodFootprints_[k].dpdy)));
+                p.glueCover = glueCoverage(p.glueDistance, p.glue->width, footprint);
+            }
+        }
+        for (size_t k = 0; k < n; ++k) {
             uint32_t slot = order[begin + k];
             WoodSurfaceSample w = woodBatch_[k];
             // Directions back to world space for shading.
@@ -373,8 +404,13 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
         } else {
             bsdf.base = kBarkColour;  // past the bark of the felled log
         }
+        if (path.glue && path.glueCover > 0) {
+            const double* g = path.glue->colour;
+            bsdf.base = mix(bsdf.base, Rgb{g[0], g[1], g[2]}, path.glueCover);
+            bsdf.fibreStrength *= 1 - path.glueCover;
+        }
         bsdf.coatWeight = finish.coatWeight;
-        bsdf.coatAlpha = finish.coatRoughness;
+        bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
         bsdf.ior = finish.coatIor;
         // Relief: tilt the normal against the height gradient's part along the surface.
         Vec3 g = wood->reliefGradient;
@@ -384,11 +420,11 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
         bsdf.base = material.colour;
         if (material.type == MaterialType::Glossy) {
             bsdf.coatWeight = 1;
-            bsdf.coatAlpha = material.roughness;
+            bsdf.coatAlpha = std::max(material.roughness, path.minRoughness);
         } else if (material.type == MaterialType::Metal) {
             bsdf.metal = true;
             bsdf.metalF0 = material.colour;
-            bsdf.metalAlpha = material.roughness;
+            bsdf.metalAlpha = std::max(material.roughness, path.minRoughness);
         }
     }
     Frame frame(ns);
@@ -453,6 +489,7 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
         return;
     }
     path.bsdfPdf = bs.pdf;
+    if (bs.roughness >= 1) path.minRoughness = kRegularisedRoughness;
     path.ray = {offsetOrigin(path.hit.position, ng, wi), wi};
     ++path.depth;
 }

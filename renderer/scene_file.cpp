@@ -329,6 +329,15 @@ SceneObject readObject(JsonReader& r, Scene& scene,
             std::make_shared<LaminatedLayout>(edgeGluedLayout(boards, thickness, width, length));
         cutLamellae(*layout, material.wood->field(), plan, nextLamella, r);
     }
+    if (auto g = r.object("glue")) {
+        layout->glue.width = g->nonNegative("width", layout->glue.width);
+        Rgb c = colourOf(*g, "colour",
+                         {layout->glue.colour[0], layout->glue.colour[1], layout->glue.colour[2]});
+        layout->glue.colour[0] = c.r;
+        layout->glue.colour[1] = c.g;
+        layout->glue.colour[2] = c.b;
+        g->finish();
+    }
     o.size = layout->size;
     o.layout = layout;
     r.finish();

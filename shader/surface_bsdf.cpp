@@ -89,10 +89,13 @@ bool SurfaceBsdf::sample(const Vec3& wo, double uLobe, double u1, double u2, Sam
     Vec3 wi;
     if (metal) {
         wi = ggx::reflect(wo, ggx::sampleVisibleNormal(wo, metalAlpha, u1, u2));
+        out.roughness = metalAlpha;
     } else if (uLobe < coatProbability(wo)) {
         wi = ggx::reflect(wo, ggx::sampleVisibleNormal(wo, coatAlpha, u1, u2));
+        out.roughness = coatAlpha;
     } else {
         wi = cosineHemisphere(u1, u2);
+        out.roughness = 1;
     }
     if (wi.z <= 0) return false;
     out.wi = wi;

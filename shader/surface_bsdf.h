@@ -36,6 +36,7 @@ struct SurfaceBsdf {
         Vec3 wi;
         Rgb weight;  ///< f cos(theta_i) / pdf
         double pdf = 0;
+        double roughness = 1;  ///< GGX alpha of the lobe it came from, 1 for the diffuse base
     };
     /// Picks wi from three uniform numbers; false if none (wo below the surface, or a sample
     /// below the horizon).
