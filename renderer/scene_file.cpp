@@ -8,6 +8,7 @@
 
 #include "grain/grain_params.h"
 #include "renderer/cut_plan.h"
+#include "renderer/log_slice.h"
 #include "skeleton/skeleton_file.h"
 #include "util/json_reader.h"
 
@@ -249,7 +250,7 @@ RigidTransform readLogPlacement(JsonReader& parent) {
 SceneObject readObject(JsonReader& r, Scene& scene,
                        const std::map<std::string, uint32_t>& materials, int32_t& nextLamella) {
     SceneObject o;
-    o.type = r.choice("type", "", {"box", "mesh", "glulam", "clt", "table_top"});
+    o.type = r.choice("type", "", {"box", "mesh", "log_slice", "glulam", "clt", "table_top"});
     o.name = r.string("name", fmt::format("{}{}", o.type, scene.objects.size()));
     std::string materialName = r.string("material", "");
     auto m = materials.find(materialName);
@@ -281,6 +282,26 @@ SceneObject readObject(JsonReader& r, Scene& scene,
         return o;
     }
 
+    if (o.type == "log_slice") {
+        if (!wood) throw r.error("material", "a log slice needs a wood material");
+        LogSliceParams slice;
+        slice.height = r.requireNumber("height");
+        slice.thickness = r.positive("thickness", slice.thickness);
+        slice.bark = r.nonNegative("bark", slice.bark);
+        slice.maxRadius = r.positive("max_radius", slice.maxRadius);
+        const GrowthField& field = material.wood->field();
+        double lo, hi;
+        trunkHeightRange(field.skeleton(), lo, hi);
+        if (slice.height - 0.5 * slice.thickness < lo || slice.height + 0.5 * slice.thickness > hi)
+            throw r.error("height", fmt::format("the slice must lie on the trunk, between {:.3g} "
+                                                "and {:.3g} m",
+                                                lo, hi));
+        o.shape = ShapeType::Mesh;
+        o.mesh = std::make_shared<TriangleMesh>(logSliceMesh(field, slice));
+        o.treeFromObject = logSliceTreeFromObject(field, slice);
+        r.finish();
+        return o;
+    }
     if (!wood)
         throw r.error("material",
                       fmt::format("a {} is made of boards: it needs a wood material", o.type));
