@@ -446,6 +446,7 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
 
     // Next-event estimation: every light, one sample each (scenes have a few lights; this
     // is far less noisy than picking one of a sun and a sky at random).
+    const bool continues = path.depth + 1 < settings.maxDepth;
     if (woLocal.z > 0) {
         for (size_t li = 0; li < scene_.lights.size(); ++li) {
             const Light& light = scene_.lights[li];
@@ -461,7 +462,9 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
             ++rayCount_;
             double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
             if (rays_.occluded(shadow, tMax)) continue;
-            double w = ls.delta ? 1 : powerHeuristic(ls.pdf, bsdf.pdf(woLocal, wiLocal));
+            // MIS only if BSDF sampling can also find this light (not at the last vertex).
+            double w =
+                ls.delta || !continues ? 1 : powerHeuristic(ls.pdf, bsdf.pdf(woLocal, wiLocal));
             Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * w / ls.pdf);
             path.radiance = path.radiance + multiply(path.throughput, contribution);
         }
