@@ -13,7 +13,8 @@ public:
     /// `exponent` is n of eq. 6 (late_wood_exponent); larger = narrower late-wood band.
     explicit RingProfile(double exponent);
 
-    /// E at growth time T (unfiltered).
+    /// E at growth time T (unfiltered), from a table: within 1e-5 of sin^n, without the
+    /// sin and pow that would otherwise dominate shading.
     double lateWood(double T) const;
     /// The mean of E over [T - width/2, T + width/2] (width in years; <= 0 = unfiltered).
     double filtered(double T, double width) const;
@@ -28,6 +29,7 @@ private:
     double integral(double T) const;
 
     double exponent_;
+    std::vector<double> values_;      ///< E(i / N), i = 0..N (the last one the limit from below)
     std::vector<double> cumulative_;  ///< integral of E over [0, i / N], i = 0..N
 };
 

@@ -36,7 +36,9 @@ void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample
     for (size_t i = 0; i < treePoints.size(); ++i) {
         bool outside = felled > 0 && samples[i].T > felled;
         out[i].coverage = outside ? 0 : 1;
-        out[i].albedo = outside ? Rgb{} : woodColour(samples[i], treePoints[i], colour);
+        out[i].albedo = outside ? Rgb{}
+                                : woodColour(samples[i], treePoints[i], colour,
+                                             rings_.lateWood(samples[i].T), 1.0);
         out[i].T = samples[i].T;
         out[i].knot = samples[i].knot;
     }

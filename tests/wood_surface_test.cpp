@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "grain/growth_terms.h"
 #include "shader/ring_profile.h"
 #include "shader/wood_shader.h"
 #include "skeleton/skeleton_index.h"
@@ -26,6 +27,18 @@ TEST(RingProfile, FilteredMatchesTheMeanOfPointSamples) {
                     << "n " << n << " width " << width << " T " << T;
             }
         }
+    }
+}
+
+TEST(RingProfile, TableFollowsEquationSix) {
+    for (double n : {1.0, 5.0, 12.0}) {
+        RingProfile rings(n);
+        double worst = 0;
+        for (int i = 0; i < 100000; ++i) {
+            double T = 3 + i / 100000.0;
+            worst = std::max(worst, std::abs(rings.lateWood(T) - lateWoodFraction(T, n)));
+        }
+        EXPECT_LT(worst, 5e-5) << "n " << n;
     }
 }
 
