@@ -115,3 +115,28 @@ TEST(GrowthTerms, KnotEmphasisDarkensKnotsAndDeadRims) {
 
 }  // namespace
 }  // namespace nenrin
+
+namespace nenrin {
+namespace {
+
+TEST(GrowthTerms, SwayWavesFollowTheirSineSum) {
+    // The sway uses its own polynomial sine: it must match the documented sum of sines.
+    SwayParams sway;
+    sway.amplitude = 0.01;
+    sway.wavelength = 0.37;
+    SwayWaves w = makeSwayWaves(sway);
+    constexpr double norm = 1.0 + 1.0 / 2 + 1.0 / 3;
+    for (int k = 0; k < 2000; ++k) {
+        Vec3 p{std::sin(k * 1.3) * 3, std::cos(k * 0.7) * 3, k * 0.01};
+        Vec3 d = swayDisplacement(p, w);
+        for (int axis = 0; axis < 3; ++axis) {
+            double sum = 0;
+            for (int i = 0; i < SwayWaves::kWaves; ++i)
+                sum += std::sin(dot(w.direction[axis][i], p) + w.phase[axis][i]) / (i + 1);
+            EXPECT_NEAR(d[axis], sum / norm * sway.amplitude, 1e-9);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace nenrin
