@@ -139,15 +139,6 @@ nenrin_status guarded(char* message, size_t size, Body&& body) noexcept {
     }
 }
 
-const char* typeName(const nlohmann::json& v) {
-    if (v.is_number()) return "a number";
-    if (v.is_string()) return "a string";
-    if (v.is_boolean()) return "a boolean";
-    if (v.is_array()) return "an array";
-    if (v.is_object()) return "an object";
-    return "null";
-}
-
 /// A "skeleton" or "grain" entry of the description: a file or an inline object.
 struct Part {
     std::string file;                         ///< resolved file name, or empty
@@ -163,7 +154,7 @@ Part readPart(JsonReader& r, const nlohmann::json& root, const std::string& key,
     }
     if (!v.is_string())
         throw r.error(key, fmt::format("expected a file name or an inline {} object, found {}", key,
-                                       typeName(v)));
+                                       jsonTypeName(v)));
     std::string name = r.string(key, "");
     if (name.empty()) throw r.error(key, "expected a file name, found an empty string");
     std::filesystem::path p(name);

@@ -84,7 +84,7 @@ nlohmann::json parseJsonFile(const std::string& path) {
     return parseJsonText(ss.str(), path);
 }
 
-static const char* typeName(const nlohmann::json& v) {
+const char* jsonTypeName(const nlohmann::json& v) {
     if (v.is_number()) return "a number";
     if (v.is_string()) return "a string";
     if (v.is_boolean()) return "a boolean";
@@ -97,7 +97,7 @@ JsonReader::JsonReader(const nlohmann::json& node, std::string file, std::string
     : node_(&node), file_(std::move(file)), path_(std::move(path)) {
     if (!node_->is_object())
         throw InputError(file_, path_.empty() ? "(top level)" : path_,
-                         fmt::format("expected an object, found {}", typeName(*node_)));
+                         fmt::format("expected an object, found {}", jsonTypeName(*node_)));
 }
 
 bool JsonReader::has(const std::string& key) const { return node_->contains(key); }
@@ -124,7 +124,7 @@ const nlohmann::json& JsonReader::at(const std::string& key) {
 
 double JsonReader::toNumber(const nlohmann::json& v, const std::string& where) const {
     if (!v.is_number())
-        throw InputError(file_, where, fmt::format("expected a number, found {}", typeName(v)));
+        throw InputError(file_, where, fmt::format("expected a number, found {}", jsonTypeName(v)));
     double d = v.get<double>();
     if (!std::isfinite(d)) throw InputError(file_, where, "expected a finite number");
     return d;
@@ -135,7 +135,7 @@ Vec3 JsonReader::toVec3(const nlohmann::json& v, const std::string& where) const
         throw InputError(
             file_, where,
             fmt::format("expected an array of 3 numbers [x, y, z], found {}",
-                        v.is_array() ? fmt::format("{} elements", v.size()) : typeName(v)));
+                        v.is_array() ? fmt::format("{} elements", v.size()) : jsonTypeName(v)));
     return {toNumber(v[0], where + "[0]"), toNumber(v[1], where + "[1]"),
             toNumber(v[2], where + "[2]")};
 }
@@ -178,7 +178,7 @@ long long JsonReader::integer(const std::string& key, long long fallback, long l
     if (!has(key)) return fallback;
     const auto& v = at(key);
     if (!v.is_number_integer())
-        throw error(key, fmt::format("expected an integer, found {}", typeName(v)));
+        throw error(key, fmt::format("expected an integer, found {}", jsonTypeName(v)));
     long long i = v.get<long long>();
     if (i < lo || i > hi)
         throw error(key, fmt::format("expected an integer in [{}, {}], found {}", lo, hi, i));
@@ -189,14 +189,15 @@ bool JsonReader::boolean(const std::string& key, bool fallback) {
     if (!has(key)) return fallback;
     const auto& v = at(key);
     if (!v.is_boolean())
-        throw error(key, fmt::format("expected true or false, found {}", typeName(v)));
+        throw error(key, fmt::format("expected true or false, found {}", jsonTypeName(v)));
     return v.get<bool>();
 }
 
 std::string JsonReader::string(const std::string& key, const std::string& fallback) {
     if (!has(key)) return fallback;
     const auto& v = at(key);
-    if (!v.is_string()) throw error(key, fmt::format("expected a string, found {}", typeName(v)));
+    if (!v.is_string())
+        throw error(key, fmt::format("expected a string, found {}", jsonTypeName(v)));
     return v.get<std::string>();
 }
 
@@ -224,8 +225,8 @@ std::vector<Vec3> JsonReader::requireVec3List(const std::string& key) {
     if (!has(key)) throw error(key, "missing required array of [x, y, z] points");
     const auto& v = at(key);
     if (!v.is_array())
-        throw error(key,
-                    fmt::format("expected an array of [x, y, z] points, found {}", typeName(v)));
+        throw error(
+            key, fmt::format("expected an array of [x, y, z] points, found {}", jsonTypeName(v)));
     std::vector<Vec3> out;
     for (size_t i = 0; i < v.size(); ++i)
         out.push_back(toVec3(v[i], fmt::format("{}[{}]", pathOf(key), i)));
@@ -236,7 +237,7 @@ std::vector<double> JsonReader::numberList(const std::string& key) {
     if (!has(key)) return {};
     const auto& v = at(key);
     if (!v.is_array())
-        throw error(key, fmt::format("expected an array of numbers, found {}", typeName(v)));
+        throw error(key, fmt::format("expected an array of numbers, found {}", jsonTypeName(v)));
     std::vector<double> out;
     for (size_t i = 0; i < v.size(); ++i)
         out.push_back(toNumber(v[i], fmt::format("{}[{}]", pathOf(key), i)));
@@ -253,7 +254,7 @@ std::vector<JsonReader> JsonReader::objectList(const std::string& key) {
     if (!has(key)) return out;
     const auto& v = at(key);
     if (!v.is_array())
-        throw error(key, fmt::format("expected an array of objects, found {}", typeName(v)));
+        throw error(key, fmt::format("expected an array of objects, found {}", jsonTypeName(v)));
     for (size_t i = 0; i < v.size(); ++i)
         out.emplace_back(v[i], file_, fmt::format("{}[{}]", pathOf(key), i));
     return out;

@@ -21,6 +21,8 @@ namespace nenrin {
 /// Reads and parses a JSON file. Missing files and syntax errors (with line and column) throw
 /// InputError.
 nlohmann::json parseJsonFile(const std::string& path);
+/// "a number", "a string", ... for messages such as "expected an object, found a string".
+const char* jsonTypeName(const nlohmann::json& value);
 /// Parses JSON text; `name` stands for the file in error messages.
 nlohmann::json parseJsonText(const std::string& text, const std::string& name);
 
