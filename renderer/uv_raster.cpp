@@ -1,0 +1,1 @@
+#include "renderer/uv_raster.h"

@@ -1,0 +1,2 @@
+#pragma once
+/// Rasterising a mesh's UV layout into texels, and gutter dilation past UV seams.
