@@ -14,6 +14,7 @@
 #include "skeleton/skeleton_file.h"
 #include "skeleton/skeleton_index.h"
 #include "util/input_error.h"
+#include "uv_bake_command.h"
 
 namespace nenrin {
 
@@ -203,6 +204,8 @@ void addBakeCommands(CLI::App& app) {
         auto files = writeVolume(grid, volumeCommon.output);
         report(grid, files, since(t0));
     });
+
+    addUvBakeCommand(bake);
 }
 
 }  // namespace nenrin

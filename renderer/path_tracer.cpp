@@ -395,6 +395,7 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
     if (dot(ns, ng) < 0) ns = -ns;
 
     SurfaceBsdf bsdf;
+    Vec3 texturedFibre;
     if (material.type == MaterialType::Wood) {
         const Finish& finish = material.wood->finish();
         if (wood->coverage > 0) {
@@ -416,6 +417,33 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
         Vec3 g = wood->reliefGradient;
         Vec3 bumped = normalize(ns - (g - ns * dot(g, ns)));
         if (dot(bumped, wo) > 0) ns = bumped;
+    } else if (material.type == MaterialType::Textured) {
+        // Baked wood maps: the same layered surface, its inputs read from the textures in the
+        // tangent frame of the uv layout (tangent +u, bitangent +v).
+        const Finish& finish = material.finish;
+        Vec3 c = material.baseColourMap->lookup3(path.hit.u, path.hit.v);
+        bsdf.base = {c.x, c.y, c.z};
+        bsdf.coatWeight = finish.coatWeight;
+        bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
+        bsdf.ior = finish.coatIor;
+        Vec3 tangent = normalize(path.hit.dpdu - ns * dot(ns, path.hit.dpdu));
+        Vec3 bitangent = cross(ns, tangent);
+        if (dot(bitangent, path.hit.dpdv) < 0) bitangent = -bitangent;
+        auto fromTangentSpace = [&](const ImageTexture& map) {
+            Vec3 e = map.lookup3(path.hit.u, path.hit.v) * 2 - Vec3{1, 1, 1};
+            return tangent * e.x + bitangent * e.y + ns * e.z;
+        };
+        if (lengthSquared(tangent) > 0) {
+            if (material.normalMap) {
+                Vec3 bumped = normalize(fromTangentSpace(*material.normalMap));
+                if (dot(bumped, wo) > 0) ns = bumped;
+            }
+            if (material.fibreMap) {
+                texturedFibre = normalize(fromTangentSpace(*material.fibreMap));
+                bsdf.fibreStrength = finish.fibreStrength;
+                bsdf.fibreWidth = finish.fibreWidth;
+            }
+        }
     } else {
         bsdf.base = material.colour;
         if (material.type == MaterialType::Glossy) {
@@ -429,6 +457,7 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
     }
     Frame frame(ns);
     if (wood && lengthSquared(wood->fibre) > 0) bsdf.fibre = frame.toLocal(wood->fibre);
+    if (lengthSquared(texturedFibre) > 0) bsdf.fibre = frame.toLocal(texturedFibre);
     const Vec3 woLocal = frame.toLocal(wo);
 
     if (camera) {

@@ -19,7 +19,19 @@ struct GeometryRecord {
     std::vector<Vec3> normals;  ///< world-space vertex normals (meshes that have them)
     std::vector<std::array<double, 2>> uvs;
     std::vector<std::array<uint32_t, 3>> triangles;
+    std::vector<std::array<Vec3, 2>> uvDerivatives;  ///< per triangle: dP/du, dP/dv
 };
+
+/// dP/du and dP/dv of a triangle (zero if its uvs have no area).
+std::array<Vec3, 2> uvDerivatives(const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                                  const std::array<double, 2>& a, const std::array<double, 2>& b,
+                                  const std::array<double, 2>& c) {
+    double du1 = b[0] - a[0], dv1 = b[1] - a[1], du2 = c[0] - a[0], dv2 = c[1] - a[1];
+    double det = du1 * dv2 - du2 * dv1;
+    if (std::abs(det) < 1e-30) return {Vec3{}, Vec3{}};
+    Vec3 e1 = p1 - p0, e2 = p2 - p0;
+    return {(e1 * dv2 - e2 * dv1) / det, (e2 * du1 - e1 * du2) / det};
+}
 
 /// The 12 triangles of a box [-s/2, s/2], wound so normals face outwards.
 void boxTriangles(const Vec3& size, std::vector<Vec3>& positions,
@@ -57,6 +69,8 @@ SurfaceHit toHit(const RTCRay& ray, const RTCHit& h, const std::vector<GeometryR
     if (!g.uvs.empty()) {
         s.u = g.uvs[t[0]][0] * w + g.uvs[t[1]][0] * h.u + g.uvs[t[2]][0] * h.v;
         s.v = g.uvs[t[0]][1] * w + g.uvs[t[1]][1] * h.u + g.uvs[t[2]][1] * h.v;
+        s.dpdu = g.uvDerivatives[h.primID][0];
+        s.dpdv = g.uvDerivatives[h.primID][1];
     }
     return s;
 }
@@ -89,6 +103,11 @@ struct RayScene::Impl {
         rtcReleaseGeometry(geom);
         if (id != records.size()) throw std::logic_error("embree geometry ids out of order");
         record.triangles = tris;
+        if (!record.uvs.empty())
+            for (const auto& t : tris)
+                record.uvDerivatives.push_back(uvDerivatives(positions[t[0]], positions[t[1]],
+                                                             positions[t[2]], record.uvs[t[0]],
+                                                             record.uvs[t[1]], record.uvs[t[2]]));
         records.push_back(std::move(record));
         triangles += tris.size();
     }

@@ -18,6 +18,7 @@ struct SurfaceHit {
     Vec3 geometricNormal;  ///< unit, world space, as wound (not flipped towards the ray)
     Vec3 shadingNormal;    ///< unit; interpolated vertex normals of meshes that have them
     double u = 0, v = 0;   ///< texture coordinates (meshes with uvs), else 0
+    Vec3 dpdu, dpdv;       ///< world-space derivatives of position over u and v (meshes with uvs)
     bool isLight = false;  ///< a rectangle light was hit
     uint32_t index = 0;    ///< scene object index, or light index if isLight
 };

@@ -10,6 +10,7 @@
 
 #include "grain/growth_field.h"
 #include "renderer/environment_map.h"
+#include "renderer/image_texture.h"
 #include "renderer/laminated_product.h"
 #include "renderer/obj_mesh.h"
 #include "renderer/rigid_transform.h"
@@ -48,7 +49,7 @@ struct Light {
     std::shared_ptr<const EnvironmentMap> environment;
 };
 
-enum class MaterialType { Diffuse, Glossy, Metal, Wood };
+enum class MaterialType { Diffuse, Glossy, Metal, Wood, Textured };
 
 struct Material {
     std::string name;
@@ -56,6 +57,10 @@ struct Material {
     Rgb colour{0.7, 0.7, 0.7};
     double roughness = 0.2;            ///< GGX alpha of the coat / metal
     const WoodShader* wood = nullptr;  ///< wood only
+    /// Textured (baked wood maps read back, docs/uv-bake.md): base colour, and optionally
+    /// tangent-space normal and fibre maps, under `finish`.
+    std::shared_ptr<const ImageTexture> baseColourMap, normalMap, fibreMap;
+    Finish finish;
 };
 
 /// A skeleton with its grain: the tree every wood material of that pair cuts from.

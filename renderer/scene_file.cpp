@@ -157,8 +157,23 @@ Material readMaterial(JsonReader& r, Scene& scene) {
     Material m;
     m.name = r.string("name", "");
     if (m.name.empty()) throw r.error("name", "missing: every material needs a name");
-    std::string type = r.choice("type", "", {"diffuse", "glossy", "metal", "wood"});
-    if (type == "wood") {
+    std::string type = r.choice("type", "", {"diffuse", "glossy", "metal", "wood", "textured"});
+    if (type == "textured") {
+        m.type = MaterialType::Textured;
+        if (!r.has("base_colour")) throw r.error("base_colour", "missing: the base colour map");
+        m.baseColourMap = std::make_shared<ImageTexture>(
+            ImageTexture::load(resolve(scene.file, r.string("base_colour", "")), 3));
+        if (r.has("normal"))
+            m.normalMap = std::make_shared<ImageTexture>(
+                ImageTexture::load(resolve(scene.file, r.string("normal", "")), 3));
+        if (r.has("fibre"))
+            m.fibreMap = std::make_shared<ImageTexture>(
+                ImageTexture::load(resolve(scene.file, r.string("fibre", "")), 3));
+        std::string preset = r.string("finish", "oiled");
+        if (!finishPreset(preset, m.finish))
+            throw r.error("finish", fmt::format("expected one of {}, found \"{}\"",
+                                                finishPresetNames(), preset));
+    } else if (type == "wood") {
         m.type = MaterialType::Wood;
         if (!r.has("skeleton")) throw r.error("skeleton", "missing: the skeleton JSON file");
         std::string skeleton = resolve(scene.file, r.string("skeleton", ""));
