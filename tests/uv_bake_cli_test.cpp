@@ -168,6 +168,26 @@ TEST_F(UvBakeCliTest, MissingOutputFolderIsRejected) {
     expectInputError(r, {"-o", "existing folder"});
 }
 
+TEST_F(UvBakeCliTest, OverlappingAndOutOfRangeUvsAreReportedNotFatal) {
+    // Two triangles on the same uvs, one reaching past u = 1.
+    fs::path mesh = in_ / "overlap.obj";
+    std::ofstream(mesh) << "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\n"
+                           "vt 0.1 0.1\nvt 0.9 0.1\nvt 0.1 0.9\nvt 1.3 0.5\n"
+                           "f 1/1 2/2 3/3\nf 1/1 4/4 3/3\n";
+    fs::path scene = in_ / "s.json";
+    std::ofstream(scene) << fmt::format(
+        R"({{"camera": {{"position": [0, 0, 2], "look_at": [0, 0, 0]}},
+  "materials": [{{"name": "w", "type": "wood", "skeleton": "{}"}}],
+  "objects": [{{"name": "tri", "type": "mesh", "file": "{}", "material": "w"}}]}})",
+        skeletonScene("straight-trunk.json").string(), mesh.string());
+    RunResult r = run({"bake", "uv", "--scene", scene.string(), "--object", "tri", "--res", "64",
+                       "-o", out_.string(), "-q"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("overlapping UVs"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("outside [0,1]"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(out_ / "basecolor.exr"));
+}
+
 TEST_F(UvBakeCliTest, MeshWithoutUvsIsRejected) {
     fs::path mesh = in_ / "plain.obj";
     std::ofstream(mesh) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
