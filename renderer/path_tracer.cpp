@@ -19,6 +19,7 @@ namespace nenrin {
 namespace {
 
 constexpr int kTileSize = 16;
+constexpr uint32_t kSamplesPerPass = 64;
 /// Random dimensions: 0-3 camera (pixel jitter, lens), then kDimsPerBounce per bounce.
 constexpr uint64_t kLightDims = 2;
 /// Bounces are spaced far apart so a scene's light count never makes two bounces share one.
@@ -145,45 +146,59 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
     const double differentialScale = std::max(0.125, 1 / std::sqrt(double(spp)));
 
     std::vector<uint64_t> pixelIds(pixels);
-    std::vector<PathState> paths(pixels * spp);
+    std::vector<double> rotations(2 * pixels);
     for (int j = 0; j < th; ++j) {
         for (int i = 0; i < tw; ++i) {
             uint32_t p = static_cast<uint32_t>(j * tw + i);
             uint64_t id = uint64_t(y0 + j) * settings.width + (x0 + i);
             pixelIds[p] = id;
             // Pixel jitter: the R2 sequence over the samples, rotated per pixel.
-            double r1 = randomAt(settings.seed, id, 0xffffffffull, 0);
-            double r2 = randomAt(settings.seed, id, 0xffffffffull, 1);
-            for (uint32_t s = 0; s < spp; ++s) {
-                PathState& path = paths[p * spp + s];
-                path.pixel = p;
-                path.sample = s;
-                double jx = r1 + s * 0.7548776662466927, jy = r2 + s * 0.5698402909980532;
-                jx -= std::floor(jx);
-                jy -= std::floor(jy);
-                CameraRay c =
-                    camera_.generate(x0 + i + jx, y0 + j + jy, randomAt(settings.seed, id, s, 2),
-                                     randomAt(settings.seed, id, s, 3), differentialScale);
-                path.ray = c.ray;
-                path.rayX = c.rayX;
-                path.rayY = c.rayY;
-            }
+            rotations[2 * p] = randomAt(settings.seed, id, 0xffffffffull, 0);
+            rotations[2 * p + 1] = randomAt(settings.seed, id, 0xffffffffull, 1);
         }
     }
 
     TileAovs aovs(pixels);
-    traceCamera(paths);
-    for (int depth = 0;; ++depth) {
-        resolveHits(paths, aovs, pixelIds);
-        bool any = false;
-        for (PathState& path : paths) {
-            if (!path.alive) continue;
-            any = true;
-            SurfaceHit hit = rays_.intersect(path.ray);
-            ++rayCount_;
-            path.hit = hit;
+    // Samples go through in passes of at most kSamplesPerPass per pixel, which bounds memory
+    // at any spp; each pixel still adds its samples in order, so sums are deterministic.
+    std::vector<PathState> paths;
+    for (uint32_t s0 = 0; s0 < spp; s0 += kSamplesPerPass) {
+        const uint32_t passSamples = std::min(spp - s0, kSamplesPerPass);
+        paths.assign(pixels * passSamples, PathState{});
+        for (int j = 0; j < th; ++j) {
+            for (int i = 0; i < tw; ++i) {
+                uint32_t p = static_cast<uint32_t>(j * tw + i);
+                uint64_t id = pixelIds[p];
+                for (uint32_t k = 0; k < passSamples; ++k) {
+                    uint32_t s = s0 + k;
+                    PathState& path = paths[p * passSamples + k];
+                    path.pixel = p;
+                    path.sample = s;
+                    double jx = rotations[2 * p] + s * 0.7548776662466927;
+                    double jy = rotations[2 * p + 1] + s * 0.5698402909980532;
+                    jx -= std::floor(jx);
+                    jy -= std::floor(jy);
+                    CameraRay c = camera_.generate(
+                        x0 + i + jx, y0 + j + jy, randomAt(settings.seed, id, s, 2),
+                        randomAt(settings.seed, id, s, 3), differentialScale);
+                    path.ray = c.ray;
+                    path.rayX = c.rayX;
+                    path.rayY = c.rayY;
+                }
+            }
         }
-        if (!any) break;
+        traceCamera(paths);
+        while (true) {
+            resolveHits(paths, aovs, pixelIds);
+            bool any = false;
+            for (PathState& path : paths) {
+                if (!path.alive) continue;
+                any = true;
+                path.hit = rays_.intersect(path.ray);
+                ++rayCount_;
+            }
+            if (!any) break;
+        }
     }
 
     // Into the film: this tile's pixels only, so threads never share a pixel.
