@@ -95,6 +95,8 @@ TEST_F(UvBakeCliTest, GrainIsContinuousAcrossTheSeams) {
     // it. Unrelated points of this cube differ by years. (Texels are 0.33 mm on the 0.1 m cube.)
     ASSERT_EQ(bake(out_, {"--res", "1024", "--padding", "0"}).exitCode, 0);
     OIIO::ImageBuf growth((out_ / "growth.exr").string());
+    OIIO::ImageBuf colour((out_ / "basecolor.exr").string());
+    double colourSum = 0, withinSum = 0;
     const double m = 0.02, inset = 1.0 / 1024;
     double worst = 0, sum = 0;
     int n = 0;
@@ -108,12 +110,29 @@ TEST_F(UvBakeCliTest, GrainIsContinuousAcrossTheSeams) {
         float a[2], b[2];
         growth.getpixel(int(u0 * 1024), int((1 - v0) * 1024), a, 2);
         growth.getpixel(int(u1 * 1024), int((1 - v1) * 1024), b, 2);
+        float ca[4], cb[4];
+        colour.getpixel(int(u0 * 1024), int((1 - v0) * 1024), ca, 4);
+        colour.getpixel(int(u1 * 1024), int((1 - v1) * 1024), cb, 4);
+        auto colourDistance = [](const float* p, const float* q) {
+            return (std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2])) / 3;
+        };
+        colourSum += colourDistance(ca, cb);
+        // The control: two texels of the end-grain chart as far apart as the seam's pair, in
+        // the direction that crosses the rings there.
+        float cc[4];
+        colour.getpixel(int(u1 * 1024) - 2, int((1 - v1) * 1024), cc, 4);
+        withinSum += colourDistance(cb, cc);
         double d = std::abs(a[0] - b[0]);
         worst = std::max(worst, d);
         sum += d;
         ++n;
     }
     EXPECT_LT(sum / n, 0.35);  // years
+    // The colour changes across the seam no more than across the same distance inside a chart
+    // (the late-to-early-wood step is sharp, so neither is small).
+    EXPECT_LT(colourSum / n, 1.5 * withinSum / n + 0.01);
+    std::printf("seam: mean |dT| %.3f years, max %.3f; mean |d colour| %.4f across, %.4f within\n",
+                sum / n, worst, colourSum / n, withinSum / n);
     EXPECT_LT(worst, 1.0);
 }
 
