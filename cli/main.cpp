@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "bake_command.h"
+#include "pov_command.h"
 #include "render_command.h"
 #include "util/input_error.h"
 
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     nenrin::addBakeCommands(app);
     nenrin::addRenderCommand(app);
+    nenrin::addPovCommands(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

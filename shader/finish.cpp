@@ -15,6 +15,14 @@ bool finishPreset(const std::string& name, Finish& f) {
         return true;
     }
     if (name == "oiled") return true;  // the defaults
+    if (name == "bare") {
+        // Lambert only: no coat, no fibre highlight, no relief (for comparisons with renderers
+        // that see only the albedo, such as the POV-Ray twins).
+        f.coatWeight = 0;
+        f.fibreStrength = 0;
+        f.bumpDepth = 0;
+        return true;
+    }
     if (name == "varnished") {
         // A thick film: a sharp coat reflection, relief mostly filled in.
         f.coatRoughness = 0.03;
@@ -26,6 +34,6 @@ bool finishPreset(const std::string& name, Finish& f) {
     return false;
 }
 
-const char* finishPresetNames() { return "matte, oiled, varnished"; }
+const char* finishPresetNames() { return "matte, oiled, varnished, bare"; }
 
 }  // namespace nenrin

@@ -18,7 +18,7 @@ struct Finish {
     double woodRoughness = 0.55;  ///< GGX alpha of the bare wood (reported to plugin hosts)
 };
 
-/// "matte" (bare, sanded), "oiled", "varnished". Returns false for an unknown name.
+/// "matte" (sanded), "oiled", "varnished", "bare" (Lambert only). False for an unknown name.
 bool finishPreset(const std::string& name, Finish& out);
 /// The preset names, comma separated, for error messages.
 const char* finishPresetNames();

@@ -144,7 +144,7 @@ TEST_F(RenderCliTest, UnknownFinishIsRejected) {
         writeScene("s.json", scene(woodMaterial(R"(, "finish": "waxed")"),
                                    R"({"type": "box", "size": [1, 1, 1], "material": "w"})"));
     expectInputError(render(p, {"-o", (out_ / "x.exr").string()}),
-                     {"materials[0].finish", "matte, oiled, varnished"});
+                     {"materials[0].finish", "matte, oiled, varnished, bare"});
 }
 
 TEST_F(RenderCliTest, MissingSkeletonOfAWoodMaterialIsReported) {

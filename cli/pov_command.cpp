@@ -1,0 +1,124 @@
+#include "pov_command.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "renderer/grid_writers.h"
+#include "renderer/pov_export.h"
+#include "renderer/scene_file.h"
+#include "util/atomic_output.h"
+#include "util/input_error.h"
+
+namespace nenrin {
+
+namespace {
+
+struct PovOptions {
+    std::string scene, output;
+    int volume = 128, threads = 0;
+    bool quiet = false;
+};
+
+struct CompareOptions {
+    std::string a, b, diff;
+    double threshold = 0.02;  ///< per-value error counted as "over"
+    double maxRmse = -1, minPsnr = -1, maxMean = -1, maxOverPercent = -1;
+};
+
+OIIO::ImageBuf readRgb(const std::string& path) {
+    OIIO::ImageBuf image(path);
+    if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT))
+        throw InputError(path, "", "cannot read the image: " + image.geterror());
+    if (image.nchannels() < 3) throw InputError(path, "", "expected at least R, G, B channels");
+    return OIIO::ImageBufAlgo::channels(image, 3, {0, 1, 2});
+}
+
+int compare(const CompareOptions& o) {
+    if (!o.diff.empty()) checkOutputName(o.diff, {".exr"});
+    OIIO::ImageBuf a = readRgb(o.a), b = readRgb(o.b);
+    if (a.spec().width != b.spec().width || a.spec().height != b.spec().height)
+        throw InputError(o.b, "",
+                         fmt::format("is {}x{}, but {} is {}x{}", b.spec().width, b.spec().height,
+                                     o.a, a.spec().width, a.spec().height));
+    auto r = OIIO::ImageBufAlgo::compare(a, b, float(o.threshold), 1e30f);
+    double values = double(a.spec().width) * a.spec().height * 3;
+    double overPercent = 100.0 * r.nfail / values;
+    fmt::print(
+        "RMSE {:.6g}  PSNR {:.2f} dB  mean abs error {:.6g}  max abs error {:.6g} at "
+        "({}, {})  over {}: {:.3f}% of values\n",
+        r.rms_error, r.PSNR, r.meanerror, r.maxerror, r.maxx, r.maxy, o.threshold, overPercent);
+    if (!o.diff.empty()) {
+        OIIO::ImageBuf d = OIIO::ImageBufAlgo::absdiff(a, b);
+        AtomicOutput out(o.diff);
+        if (!d.write(out.temporaryPath(), OIIO::TypeDesc::FLOAT, "openexr"))
+            throw InputError(o.diff, "", "cannot write the difference: " + d.geterror());
+        out.commit();
+        fmt::print("wrote {}\n", o.diff);
+    }
+    std::vector<std::string> failures;
+    if (o.maxRmse >= 0 && r.rms_error > o.maxRmse)
+        failures.push_back(fmt::format("RMSE {:.6g} > {}", r.rms_error, o.maxRmse));
+    if (o.minPsnr >= 0 && r.PSNR < o.minPsnr)
+        failures.push_back(fmt::format("PSNR {:.2f} < {}", r.PSNR, o.minPsnr));
+    if (o.maxMean >= 0 && r.meanerror > o.maxMean)
+        failures.push_back(fmt::format("mean error {:.6g} > {}", r.meanerror, o.maxMean));
+    if (o.maxOverPercent >= 0 && overPercent > o.maxOverPercent)
+        failures.push_back(
+            fmt::format("{:.3f}% over {} > {}%", overPercent, o.threshold, o.maxOverPercent));
+    for (const auto& f : failures) fmt::print(stderr, "nenrin: compare: {}\n", f);
+    return failures.empty() ? 0 : 2;
+}
+
+}  // namespace
+
+void addPovCommands(CLI::App& app) {
+    auto p = std::make_shared<PovOptions>();
+    CLI::App* pov = app.add_subcommand(
+        "pov",
+        "Write a scene's twin for POV-Ray 3.7: scene.pov, scene.ini and df3 volumes of "
+        "the wood (docs/povray-bridge.md)");
+    pov->add_option("scene", p->scene, "Scene JSON file")->required();
+    pov->add_option("-o,--output", p->output, "Existing folder for the POV-Ray files")->required();
+    pov->add_option("--volume", p->volume, "df3 samples along a wood object's longest side")
+        ->check(CLI::Range(2, 1024))
+        ->default_val(128);
+    pov->add_option("--threads", p->threads, "Worker threads (0 = all cores)")
+        ->check(CLI::Range(0, 1024))
+        ->default_val(0);
+    pov->add_flag("-q,--quiet", p->quiet, "No progress output");
+    pov->callback([p] {
+        auto scene = loadScene(p->scene);
+        PovExportOptions options;
+        options.volumeResolution = p->volume;
+        options.threads = p->threads;
+        options.quiet = p->quiet;
+        for (const auto& f : exportPovScene(*scene, p->output, options))
+            fmt::print("wrote {}\n", f);
+    });
+
+    auto c = std::make_shared<CompareOptions>();
+    CLI::App* cmp =
+        app.add_subcommand("compare",
+                           "Compare the RGB of two images (OpenImageIO): RMSE, PSNR, mean and max "
+                           "absolute error, share of values over --threshold; exit 2 past a limit");
+    cmp->add_option("a", c->a, "First image")->required();
+    cmp->add_option("b", c->b, "Second image")->required();
+    cmp->add_option("--diff", c->diff, "Write |A - B| as an EXR");
+    cmp->add_option("--threshold", c->threshold, "Per-value error counted as over")
+        ->check(CLI::PositiveNumber)
+        ->default_val(0.02);
+    cmp->add_option("--max-rmse", c->maxRmse, "Fail if the RMSE is larger");
+    cmp->add_option("--min-psnr", c->minPsnr, "Fail if the PSNR (dB) is smaller");
+    cmp->add_option("--max-mean", c->maxMean, "Fail if the mean absolute error is larger");
+    cmp->add_option("--max-over-percent", c->maxOverPercent,
+                    "Fail if more than this % of values are over --threshold");
+    cmp->callback([c] {
+        int code = compare(*c);
+        if (code != 0) throw CLI::RuntimeError(code);
+    });
+}
+
+}  // namespace nenrin
