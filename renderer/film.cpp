@@ -1,7 +1,6 @@
 #include "renderer/film.h"
 
-#include <OpenImageIO/imageio.h>
-
+#include "renderer/exr_file.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
 
@@ -27,13 +26,6 @@ void writeFilmExr(const Film& film, const std::string& path,
                                             "albedo.G", "albedo.B", "N.X",  "N.Y",    "N.Z",
                                             "Z",        "T",        "knot", "lamella"};
     const int channels = static_cast<int>(names.size());
-    OIIO::ImageSpec spec(film.width, film.height, channels, OIIO::TypeDesc::FLOAT);
-    spec.channelnames = names;
-    spec.alpha_channel = 3;
-    spec.z_channel = 10;
-    spec.attribute("compression", "zip");
-    for (const auto& [key, value] : metadata) spec.attribute("nenrin:" + key, value);
-
     const size_t n = size_t(film.width) * film.height;
     std::vector<float> pixels(n * channels);
     for (size_t i = 0; i < n; ++i) {
@@ -50,12 +42,8 @@ void writeFilmExr(const Film& film, const std::string& path,
         p[13] = film.lamella[i];
     }
     AtomicOutput out(path);
-    auto writer = OIIO::ImageOutput::create(out.temporaryPath());
-    if (!writer || !writer->open(out.temporaryPath(), spec) ||
-        !writer->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !writer->close())
-        throw InputError(
-            path, "output",
-            "could not write the EXR: " + (writer ? writer->geterror() : OIIO::geterror()));
+    writeFloatExr(path, out.temporaryPath(), film.width, film.height, names, pixels.data(),
+                  metadata);
     out.commit();
 }
 

@@ -1,6 +1,5 @@
 #include "renderer/uv_bake.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/exr_file.h"
 #include "renderer/parallel_tiles.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
@@ -47,25 +47,6 @@ void encodeUnit(float* out, const Vec3& v) {
     out[0] = float(0.5 * v.x + 0.5);
     out[1] = float(0.5 * v.y + 0.5);
     out[2] = float(0.5 * v.z + 0.5);
-}
-
-void writeMap(const std::string& path, int width, int height, const std::vector<float>& pixels,
-              const std::vector<std::string>& channels,
-              const std::map<std::string, std::string>& metadata, AtomicOutput& out) {
-    OIIO::ImageSpec spec(width, height, static_cast<int>(channels.size()), OIIO::TypeDesc::FLOAT);
-    spec.channelnames = channels;
-    if (channels.size() == 4) spec.alpha_channel = 3;
-    spec.attribute("compression", "zip");
-    spec.attribute("oiio:ColorSpace", "Linear");
-    // OpenEXR would stamp the current time: a fixed date keeps the bytes reproducible.
-    spec.attribute("DateTime", "2000:01:01 00:00:00");
-    for (const auto& [key, value] : metadata) spec.attribute("nenrin:" + key, value);
-    auto writer = OIIO::ImageOutput::create(out.temporaryPath());
-    if (!writer || !writer->open(out.temporaryPath(), spec) ||
-        !writer->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !writer->close())
-        throw InputError(
-            path, "output",
-            "could not write the EXR: " + (writer ? writer->geterror() : OIIO::geterror()));
 }
 
 }  // namespace
@@ -210,7 +191,8 @@ std::vector<std::string> writeUvMaps(const UvMaps& maps, const SceneObject& obje
     for (const Map& m : list) {
         std::string path = (fs::path(folder) / m.file).string();
         outputs.push_back(std::make_unique<AtomicOutput>(path));
-        writeMap(path, maps.width, maps.height, *m.pixels, m.channels, metadata, *outputs.back());
+        writeFloatExr(path, outputs.back()->temporaryPath(), maps.width, maps.height, m.channels,
+                      m.pixels->data(), metadata);
         written.push_back(path);
     }
     // The mesh and a material pointing at the maps, so the bake opens textured.
