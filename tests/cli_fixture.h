@@ -32,15 +32,17 @@ namespace {
 const fs::path kBinary = NENRIN_BINARY;
 const fs::path kSourceDir = NENRIN_SOURCE_DIR;
 
-fs::path skeletonScene(const std::string& name) {
+inline fs::path skeletonScene(const std::string& name) {
     return kSourceDir / "scenes" / "skeletons" / name;
 }
-fs::path grainScene(const std::string& name) { return kSourceDir / "scenes" / "grain" / name; }
-fs::path badFixture(const std::string& name) {
+inline fs::path grainScene(const std::string& name) {
+    return kSourceDir / "scenes" / "grain" / name;
+}
+inline fs::path badFixture(const std::string& name) {
     return kSourceDir / "tests" / "data" / "bad" / name;
 }
 
-std::string shellQuote(const std::string& s) {
+inline std::string shellQuote(const std::string& s) {
     std::string q = "'";
     for (char c : s) {
         if (c == '\'')
@@ -51,20 +53,20 @@ std::string shellQuote(const std::string& s) {
     return q + "'";
 }
 
-std::string readText(const fs::path& path) {
+inline std::string readText(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::stringstream ss;
     ss << in.rdbuf();
     return ss.str();
 }
 
-std::vector<unsigned char> readBytes(const fs::path& path) {
+inline std::vector<unsigned char> readBytes(const fs::path& path) {
     std::string s = readText(path);
     return {s.begin(), s.end()};
 }
 
 /// Counts the non-overlapping occurrences of `needle` in `haystack`.
-size_t countOf(const std::string& haystack, const std::string& needle) {
+inline size_t countOf(const std::string& haystack, const std::string& needle) {
     size_t n = 0;
     for (size_t p = haystack.find(needle); p != std::string::npos;
          p = haystack.find(needle, p + needle.size()))
@@ -89,7 +91,7 @@ struct Image {
 };
 
 /// Reads a whole image as float; nullopt (and a test failure) if it cannot be read.
-std::optional<Image> readImage(const fs::path& path) {
+inline std::optional<Image> readImage(const fs::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) {
         ADD_FAILURE() << "cannot open " << path << ": " << OIIO::geterror();
@@ -108,7 +110,7 @@ std::optional<Image> readImage(const fs::path& path) {
     return img;
 }
 
-int channelIndex(const OIIO::ImageSpec& spec, const std::string& name) {
+inline int channelIndex(const OIIO::ImageSpec& spec, const std::string& name) {
     for (size_t c = 0; c < spec.channelnames.size(); ++c)
         if (spec.channelnames[c] == name) return static_cast<int>(c);
     return -1;
