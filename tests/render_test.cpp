@@ -273,7 +273,9 @@ TEST(CutPlan, BoardsDifferAndTheSameSeedGivesTheSameBoards) {
     for (size_t i = 0; i < la.size(); ++i) {
         EXPECT_EQ(la[i].treeFromLamella.origin, lb[i].treeFromLamella.origin);
         EXPECT_EQ(la[i].treeFromLamella.y, lb[i].treeFromLamella.y);
-        if (i > 0) EXPECT_NE(la[i].treeFromLamella.origin, la[i - 1].treeFromLamella.origin);
+        if (i > 0) {
+            EXPECT_NE(la[i].treeFromLamella.origin, la[i - 1].treeFromLamella.origin);
+        }
     }
     EXPECT_NE(la[0].treeFromLamella.origin, lc[0].treeFromLamella.origin);
 }
