@@ -10,6 +10,7 @@
 #include <fstream>
 #include <memory>
 
+#include "renderer/exr_file.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
 
@@ -40,25 +41,15 @@ void checkOutputName(const std::string& path, const std::vector<std::string>& ex
 std::vector<std::string> writeExr(const BakedGrid& grid, const std::string& path) {
     checkOutputName(path, {".exr"});
     AtomicOutput out(path);
-    const int height = grid.height * grid.depth;
-    OIIO::ImageSpec spec(grid.width, height, BakedGrid::kChannels, OIIO::TypeDesc::FLOAT);
-    spec.channelnames.assign(kBakeChannels.begin(), kBakeChannels.end());
-    spec.alpha_channel = 3;
-    spec.attribute("compression", "zip");
-    spec.attribute("Software", "nenrin");
-    for (const auto& [key, value] : grid.metadata) spec.attribute("nenrin:" + key, value);
+    std::map<std::string, std::string> metadata = grid.metadata;
     if (grid.depth > 1) {
-        spec.attribute("nenrin:volume_resolution",
-                       fmt::format("{} {} {}", grid.width, grid.height, grid.depth));
-        spec.attribute("nenrin:volume_layout",
-                       "atlas: z slice k occupies rows k*Sy .. k*Sy+Sy-1, y index = row - k*Sy");
+        metadata["volume_resolution"] =
+            fmt::format("{} {} {}", grid.width, grid.height, grid.depth);
+        metadata["volume_layout"] =
+            "atlas: z slice k occupies rows k*Sy .. k*Sy+Sy-1, y index = row - k*Sy";
     }
-    auto image = OIIO::ImageOutput::create(out.temporaryPath());
-    if (!image) throw InputError(path, "", "cannot create an EXR writer: " + OIIO::geterror());
-    if (!image->open(out.temporaryPath(), spec) ||
-        !image->write_image(OIIO::TypeDesc::FLOAT, grid.data.data()) || !image->close())
-        throw InputError(path, "", "cannot write EXR: " + image->geterror());
-    image.reset();
+    writeFloatExr(path, out.temporaryPath(), grid.width, grid.height * grid.depth,
+                  {kBakeChannels.begin(), kBakeChannels.end()}, grid.data.data(), metadata);
     out.commit();
     return {path};
 }

@@ -25,7 +25,6 @@ constexpr uint64_t kLightDims = 2;
 /// Bounces are spaced far apart so a scene's light count never makes two bounces share one.
 constexpr uint64_t kDimsPerBounce = 1 << 16;
 constexpr double kRegularisedRoughness = 0.3;
-constexpr Rgb kBarkColour{0.06, 0.04, 0.03};
 
 /// The counter-based random number for (pixel, sample, dimension).
 double randomAt(uint64_t seed, uint64_t pixel, uint64_t sample, uint64_t dimension) {
@@ -418,7 +417,7 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
             bsdf.fibreStrength = finish.fibreStrength;
             bsdf.fibreWidth = finish.fibreWidth;
         } else {
-            bsdf.base = kBarkColour;  // past the bark of the felled log
+            bsdf.base = kBarkAlbedo;  // past the bark of the felled log
         }
         if (path.glue && path.glueCover > 0) {
             const double* g = path.glue->colour;

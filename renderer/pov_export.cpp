@@ -98,7 +98,7 @@ BakedGrid bakeObjectVolume(const SceneObject& o, const WoodShader& shader, int r
             shader.evaluate(points, out, scratch, growth);
             for (size_t n = 0; n < list.size(); ++n) {
                 float* px = &g.data[list[n].first * BakedGrid::kChannels];
-                Rgb c = out[n].coverage > 0 ? out[n].albedo : Rgb{0.06, 0.04, 0.03};
+                Rgb c = out[n].coverage > 0 ? out[n].albedo : kBarkAlbedo;
                 px[0] = float(c.r);
                 px[1] = float(c.g);
                 px[2] = float(c.b);

@@ -83,8 +83,6 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
     ProgressReporter progress(static_cast<long long>(tilesX) * tilesY, "Baking UV maps",
                               options.quiet);
     const RigidTransform& treeFromObject = object.treeFromObject;
-    const Finish& finish = shader.finish();
-    const double roughness = finish.coatWeight > 0 ? finish.coatRoughness : finish.woodRoughness;
     parallelTiles(size_t(tilesX) * tilesY, options.threads, [&](size_t tile) {
         const int x0 = static_cast<int>(tile % tilesX) * kTile;
         const int y0 = static_cast<int>(tile / tilesX) * kTile;
@@ -126,12 +124,12 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
         for (size_t k = 0; k < texels.size(); ++k) {
             size_t i = texels[k];
             const WoodSurfaceSample& s = samples[k];
-            Rgb albedo = s.coverage > 0 ? s.albedo : Rgb{0.06, 0.04, 0.03};
+            Rgb albedo = s.coverage > 0 ? s.albedo : kBarkAlbedo;
             maps.baseColour[4 * i] = float(albedo.r);
             maps.baseColour[4 * i + 1] = float(albedo.g);
             maps.baseColour[4 * i + 2] = float(albedo.b);
             maps.baseColour[4 * i + 3] = 1;
-            maps.roughness[i] = float(roughness);
+            maps.roughness[i] = float(s.roughness);
             const Vec3 &n = normals[k], &t = tangents[k], &bt = bitangents[k];
             Vec3 g = objectFromTree.vector(s.reliefGradient);
             Vec3 bumped = normalize(n - (g - n * dot(g, n)));

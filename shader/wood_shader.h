@@ -18,6 +18,9 @@
 
 namespace nenrin {
 
+/// Albedo of the bark: what renderers show past the felled log (coverage 0).
+inline constexpr Rgb kBarkAlbedo{0.06, 0.04, 0.03};
+
 struct WoodSample {
     Rgb albedo;           ///< scene-linear
     double coverage = 1;  ///< 0 outside the felled log (T past the felling time), else 1

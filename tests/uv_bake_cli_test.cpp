@@ -13,6 +13,17 @@ const fs::path kCubeScene = kSourceDir / "tests/data/scenes/uv-cube.json";
 
 class UvBakeCliTest : public CliTest {
 protected:
+    /// A scene holding one wood mesh object "tri" made of `mesh`.
+    fs::path meshScene(const fs::path& mesh) {
+        fs::path scene = in_ / "s.json";
+        std::ofstream(scene) << fmt::format(
+            R"({{"camera": {{"position": [0, 0, 2], "look_at": [0, 0, 0]}},
+  "materials": [{{"name": "w", "type": "wood", "skeleton": "{}"}}],
+  "objects": [{{"name": "tri", "type": "mesh", "file": "{}", "material": "w"}}]}})",
+            skeletonScene("straight-trunk.json").string(), mesh.string());
+        return scene;
+    }
+
     RunResult bake(const fs::path& folder, const std::vector<std::string>& extra = {}) {
         std::vector<std::string> args{"bake",     "uv",   "--scene", kCubeScene.string(),
                                       "--object", "cube", "-o",      folder.string(),
@@ -193,12 +204,7 @@ TEST_F(UvBakeCliTest, OverlappingAndOutOfRangeUvsAreReportedNotFatal) {
     std::ofstream(mesh) << "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\n"
                            "vt 0.1 0.1\nvt 0.9 0.1\nvt 0.1 0.9\nvt 1.3 0.5\n"
                            "f 1/1 2/2 3/3\nf 1/1 4/4 3/3\n";
-    fs::path scene = in_ / "s.json";
-    std::ofstream(scene) << fmt::format(
-        R"({{"camera": {{"position": [0, 0, 2], "look_at": [0, 0, 0]}},
-  "materials": [{{"name": "w", "type": "wood", "skeleton": "{}"}}],
-  "objects": [{{"name": "tri", "type": "mesh", "file": "{}", "material": "w"}}]}})",
-        skeletonScene("straight-trunk.json").string(), mesh.string());
+    fs::path scene = meshScene(mesh);
     RunResult r = run({"bake", "uv", "--scene", scene.string(), "--object", "tri", "--res", "64",
                        "-o", out_.string(), "-q"});
     EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -210,12 +216,7 @@ TEST_F(UvBakeCliTest, OverlappingAndOutOfRangeUvsAreReportedNotFatal) {
 TEST_F(UvBakeCliTest, MeshWithoutUvsIsRejected) {
     fs::path mesh = in_ / "plain.obj";
     std::ofstream(mesh) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-    fs::path scene = in_ / "s.json";
-    std::ofstream(scene) << fmt::format(
-        R"({{"camera": {{"position": [0, 0, 2], "look_at": [0, 0, 0]}},
-  "materials": [{{"name": "w", "type": "wood", "skeleton": "{}"}}],
-  "objects": [{{"name": "tri", "type": "mesh", "file": "{}", "material": "w"}}]}})",
-        skeletonScene("straight-trunk.json").string(), mesh.string());
+    fs::path scene = meshScene(mesh);
     RunResult r = run(
         {"bake", "uv", "--scene", scene.string(), "--object", "tri", "-o", out_.string(), "-q"});
     expectInputError(r, {"texture coordinates"});
