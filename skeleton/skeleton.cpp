@@ -5,26 +5,31 @@
 
 namespace nenrin {
 
-void Skeleton::addTrunk(const std::vector<Vec3>& points, const std::vector<double>& birthTimes) {
+void Skeleton::addTrunk(const std::vector<Vec3>& points, const std::vector<double>& birthTimes,
+                        const std::vector<double>& radii) {
     if (!chains_.empty()) throw std::logic_error("Skeleton::addTrunk: the trunk must come first");
-    addChain(SegmentKind::Trunk, 0, kNone, kNone, points, birthTimes, ChainProperties{});
+    addChain(SegmentKind::Trunk, 0, kNone, kNone, points, birthTimes, radii, ChainProperties{});
 }
 
 uint32_t Skeleton::addBranch(uint32_t parentSegment, const std::vector<Vec3>& points,
-                             const std::vector<double>& birthTimes, const ChainProperties& props) {
+                             const std::vector<double>& birthTimes, const ChainProperties& props,
+                             const std::vector<double>& radii) {
     if (parentSegment >= segments_.size())
         throw std::logic_error("Skeleton::addBranch: parent segment out of range");
     const SkeletonSegment& parent = segments_[parentSegment];
     return addChain(SegmentKind::Branch, static_cast<uint8_t>(parent.order + 1),
                     static_cast<int32_t>(parent.chain), static_cast<int32_t>(parentSegment), points,
-                    birthTimes, props);
+                    birthTimes, radii, props);
 }
 
 uint32_t Skeleton::addChain(SegmentKind kind, uint8_t order, int32_t parentChain,
                             int32_t parentSegment, const std::vector<Vec3>& points,
-                            const std::vector<double>& birthTimes, const ChainProperties& props) {
+                            const std::vector<double>& birthTimes,
+                            const std::vector<double>& radii, const ChainProperties& props) {
     if (points.size() < 2 || points.size() != birthTimes.size())
         throw std::logic_error("Skeleton: a chain needs >= 2 points with one birth time each");
+    if (!radii.empty() && radii.size() != points.size())
+        throw std::logic_error("Skeleton: radii must be empty or one per point");
     SkeletonChain chain;
     chain.kind = kind;
     chain.order = order;
@@ -34,7 +39,7 @@ uint32_t Skeleton::addChain(SegmentKind kind, uint8_t order, int32_t parentChain
     uint32_t chainId = static_cast<uint32_t>(chains_.size());
 
     uint32_t firstNode = static_cast<uint32_t>(nodes_.size());
-    for (size_t i = 0; i < points.size(); ++i) nodes_.push_back({points[i], birthTimes[i]});
+    for (size_t i = 0; i < points.size(); ++i) nodes_.push_back({points[i], birthTimes[i], radii.empty() ? 0.0 : radii[i]});
     for (uint32_t i = 0; i + 1 < points.size(); ++i) {
         SkeletonSegment s;
         s.from = firstNode + i;

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "util/vec3.h"
@@ -21,6 +22,8 @@ enum class SegmentKind : uint8_t { Trunk, Branch };
 struct SkeletonNode {
     Vec3 position;
     double birthTime = 0;  ///< years after the tree started growing
+    double radius = 0;     ///< m, the wood's radius here at the skeleton's age; 0 = unknown
+                           ///< (only previews use it; the grain comes from the growth field)
 };
 
 inline constexpr double kNeverDies = std::numeric_limits<double>::infinity();
@@ -56,12 +59,21 @@ struct ChainProperties {
 
 class Skeleton {
 public:
-    /// Adds the trunk (must be the first chain). Birth times are per point.
-    void addTrunk(const std::vector<Vec3>& points, const std::vector<double>& birthTimes);
+    /// Adds the trunk (must be the first chain). Birth times are per point; radii (m) are per
+    /// point too, or empty for "unknown".
+    void addTrunk(const std::vector<Vec3>& points, const std::vector<double>& birthTimes,
+                  const std::vector<double>& radii = {});
     /// Adds a branch chain whose first point lies on segment `parentSegment` of another chain.
     /// Returns the chain id.
     uint32_t addBranch(uint32_t parentSegment, const std::vector<Vec3>& points,
-                       const std::vector<double>& birthTimes, const ChainProperties& props);
+                       const std::vector<double>& birthTimes, const ChainProperties& props,
+                       const std::vector<double>& radii = {});
+
+    /// The tree's yearly radial growth: entry k is the width (m) of the ring the trunk laid
+    /// down between years k and k+1. Empty = the grain's constant radial speed. Growth models
+    /// that simulate the tree's life (suppression, release) fill it.
+    const std::vector<double>& ringWidths() const { return ringWidths_; }
+    void setRingWidths(std::vector<double> widths) { ringWidths_ = std::move(widths); }
 
     const std::vector<SkeletonNode>& nodes() const { return nodes_; }
     const std::vector<SkeletonSegment>& segments() const { return segments_; }
@@ -81,11 +93,12 @@ public:
 private:
     uint32_t addChain(SegmentKind kind, uint8_t order, int32_t parentChain, int32_t parentSegment,
                       const std::vector<Vec3>& points, const std::vector<double>& birthTimes,
-                      const ChainProperties& props);
+                      const std::vector<double>& radii, const ChainProperties& props);
 
     std::vector<SkeletonNode> nodes_;
     std::vector<SkeletonSegment> segments_;
     std::vector<SkeletonChain> chains_;
+    std::vector<double> ringWidths_;
 };
 
 }  // namespace nenrin

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "skeleton/segment_geometry.h"
 #include "util/json_reader.h"
@@ -73,10 +74,14 @@ public:
         if (points.size() < 2)
             throw trunk->error(
                 "points", fmt::format("expected at least 2 trunk points, found {}", points.size()));
-        trunk->finish();
         checkSegments(points, *trunk, "points");
-        ChainGeometry trunkGeometry{points, birthTimes(points, 0.0), 0};
-        skeleton_.addTrunk(trunkGeometry.points, trunkGeometry.births);
+        std::vector<double> births = trunk->has("birth_times")
+                                         ? explicitBirthTimes(*trunk, points.size(), std::nullopt)
+                                         : birthTimes(points, 0.0);
+        std::vector<double> radii = readRadii(*trunk, points.size());
+        trunk->finish();
+        ChainGeometry trunkGeometry{points, births, 0};
+        skeleton_.addTrunk(trunkGeometry.points, trunkGeometry.births, radii);
         trunkLength_ = polylineLength(points);
 
         if (auto d = root.object("branch_defaults")) {
@@ -84,6 +89,16 @@ public:
             d->finish();
         }
         for (auto& b : root.objectList("branches")) parseBranch(b, trunkGeometry, true);
+        if (root.has("ring_widths")) {
+            std::vector<double> widths = root.numberList("ring_widths");
+            for (size_t i = 0; i < widths.size(); ++i)
+                if (!(widths[i] > 0) || !std::isfinite(widths[i]))
+                    throw root.error("ring_widths",
+                                     fmt::format("entry {} is {}: expected ring widths > 0 (m)",
+                                                 i, widths[i]));
+            skeleton_.setRingWidths(std::move(widths));
+        }
+        root.object("source");  // provenance, free-form: read by people, not by nenrin
         root.finish();
         return std::move(skeleton_);
     }
@@ -94,6 +109,45 @@ private:
         for (size_t i = 1; i < pts.size(); ++i)
             t.push_back(t.back() + length(pts[i] - pts[i - 1]) / elongationSpeed_);
         return t;
+    }
+
+    /// Explicit per-point birth times (key "birth_times"): finite, >= 0, never decreasing along
+    /// the chain, and not before `start` (the branch's birth on its parent) when given.
+    std::vector<double> explicitBirthTimes(JsonReader& r, size_t count,
+                                           std::optional<double> start) {
+        std::vector<double> t = r.numberList("birth_times");
+        if (t.size() != count)
+            throw r.error("birth_times", fmt::format("expected {} birth times (one per point), "
+                                                     "found {}",
+                                                     count, t.size()));
+        double previous = start.value_or(0.0);
+        for (size_t i = 0; i < t.size(); ++i) {
+            if (!std::isfinite(t[i]) || t[i] < 0)
+                throw r.error("birth_times",
+                              fmt::format("entry {} is {}: expected years >= 0", i, t[i]));
+            if (t[i] < previous - 1e-9)
+                throw r.error("birth_times",
+                              fmt::format("entry {} ({}) is earlier than {} before it: expected "
+                                          "birth times that never decrease from the base",
+                                          i, t[i], previous));
+            previous = t[i];
+        }
+        return t;
+    }
+
+    /// Optional per-point radii (key "radii", m, >= 0); empty when not given.
+    std::vector<double> readRadii(JsonReader& r, size_t count) {
+        if (!r.has("radii")) return {};
+        std::vector<double> radii = r.numberList("radii");
+        if (radii.size() != count)
+            throw r.error("radii", fmt::format("expected {} radii (one per point), found {}",
+                                               count, radii.size()));
+        for (size_t i = 0; i < radii.size(); ++i)
+            if (!std::isfinite(radii[i]) || radii[i] < 0)
+                throw r.error("radii",
+                              fmt::format("entry {} is {}: expected a radius >= 0 (m)", i,
+                                          radii[i]));
+        return radii;
     }
 
     /// `pts[0]` is the branch start (not written by the user) when `startPrepended`: messages
@@ -123,6 +177,8 @@ private:
     }
 
     Attachment findStart(JsonReader& b, const ChainGeometry& parent, bool onTrunk) {
+        if (b.has("on_segment") && !b.has("start"))
+            throw b.error("on_segment", "\"on_segment\" goes with \"start\"");
         int given = b.has("height") + b.has("start") + b.has("at");
         if (given != 1)
             throw b.error("",
@@ -160,7 +216,13 @@ private:
         Vec3 s = b.requireVec3("start");
         double best = std::numeric_limits<double>::infinity();
         Attachment att{};
-        for (size_t i = 0; i + 1 < parent.points.size(); ++i) {
+        size_t first = 0, last = parent.points.size() - 1;
+        if (b.has("on_segment")) {  // a start on a joint: which of the two segments
+            first = static_cast<size_t>(
+                b.integer("on_segment", 0, 0, static_cast<long long>(last) - 1));
+            last = first + 1;
+        }
+        for (size_t i = first; i + 1 <= last; ++i) {
             auto pr = projectOntoSegment(s, parent.points[i], parent.points[i + 1]);
             if (pr.distance2 < best) {
                 best = pr.distance2;
@@ -198,8 +260,18 @@ private:
 
     void parseBranch(JsonReader& b, const ChainGeometry& parent, bool onTrunk) {
         Attachment att = findStart(b, parent, onTrunk);
+        if (b.has("start_birth_time")) {
+            double t = b.nonNegative("start_birth_time", 0);
+            if (t < att.birth - 1e-9)
+                throw b.error("start_birth_time",
+                              fmt::format("{} years is before the parent reached this point ({} "
+                                          "years): a branch cannot start before its parent",
+                                          t, att.birth));
+            att.birth = t;
+        }
         BranchDefaults props = readProperties(b, defaults_);
         std::vector<Vec3> points{att.point};
+        std::vector<double> births, radii;
         if (b.has("points")) {
             if (b.has("direction") || b.has("azimuth") || b.has("elevation") || b.has("length"))
                 throw b.error("points",
@@ -208,15 +280,29 @@ private:
             for (const Vec3& p : b.requireVec3List("points")) points.push_back(p);
             if (points.size() < 2) throw b.error("points", "expected at least one point");
             checkSegments(points, b, "points", true);
+            if (b.has("birth_times")) {
+                births = explicitBirthTimes(b, points.size() - 1, att.birth);
+                births.insert(births.begin(), att.birth);
+            }
+            radii = readRadii(b, points.size() - 1);
         } else {
+            for (const char* key : {"birth_times", "radii"})
+                if (b.has(key))
+                    throw b.error(key, "per-point values need a polyline branch (\"points\")");
             Vec3 d = readDirection(b);
             double len = props.length > 0 ? props.length : trunkLength_;
             points.push_back(att.point + d * len);
         }
-        ChainGeometry geometry{points, birthTimes(points, att.birth),
+        if (!radii.empty())
+            radii.insert(radii.begin(),
+                         b.has("start_radius") ? b.nonNegative("start_radius", 0) : radii[0]);
+        else if (b.has("start_radius"))
+            throw b.error("start_radius", "a start radius needs \"radii\" for the points too");
+        if (births.empty()) births = birthTimes(points, att.birth);
+        ChainGeometry geometry{points, births,
                                static_cast<uint32_t>(skeleton_.segments().size())};
         skeleton_.addBranch(att.segment, geometry.points, geometry.births,
-                            {props.gamma, props.deathTime, props.diebackExponent});
+                            {props.gamma, props.deathTime, props.diebackExponent}, radii);
         for (auto& sub : b.objectList("branches")) parseBranch(sub, geometry, false);
         b.finish();
     }
