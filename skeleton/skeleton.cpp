@@ -24,8 +24,8 @@ uint32_t Skeleton::addBranch(uint32_t parentSegment, const std::vector<Vec3>& po
 
 uint32_t Skeleton::addChain(SegmentKind kind, uint8_t order, int32_t parentChain,
                             int32_t parentSegment, const std::vector<Vec3>& points,
-                            const std::vector<double>& birthTimes,
-                            const std::vector<double>& radii, const ChainProperties& props) {
+                            const std::vector<double>& birthTimes, const std::vector<double>& radii,
+                            const ChainProperties& props) {
     if (points.size() < 2 || points.size() != birthTimes.size())
         throw std::logic_error("Skeleton: a chain needs >= 2 points with one birth time each");
     if (!radii.empty() && radii.size() != points.size())
@@ -39,7 +39,8 @@ uint32_t Skeleton::addChain(SegmentKind kind, uint8_t order, int32_t parentChain
     uint32_t chainId = static_cast<uint32_t>(chains_.size());
 
     uint32_t firstNode = static_cast<uint32_t>(nodes_.size());
-    for (size_t i = 0; i < points.size(); ++i) nodes_.push_back({points[i], birthTimes[i], radii.empty() ? 0.0 : radii[i]});
+    for (size_t i = 0; i < points.size(); ++i)
+        nodes_.push_back({points[i], birthTimes[i], radii.empty() ? 0.0 : radii[i]});
     for (uint32_t i = 0; i + 1 < points.size(); ++i) {
         SkeletonSegment s;
         s.from = firstNode + i;

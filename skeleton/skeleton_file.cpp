@@ -93,9 +93,9 @@ public:
             std::vector<double> widths = root.numberList("ring_widths");
             for (size_t i = 0; i < widths.size(); ++i)
                 if (!(widths[i] > 0) || !std::isfinite(widths[i]))
-                    throw root.error("ring_widths",
-                                     fmt::format("entry {} is {}: expected ring widths > 0 (m)",
-                                                 i, widths[i]));
+                    throw root.error(
+                        "ring_widths",
+                        fmt::format("entry {} is {}: expected ring widths > 0 (m)", i, widths[i]));
             skeleton_.setRingWidths(std::move(widths));
         }
         root.object("source");  // provenance, free-form: read by people, not by nenrin
@@ -140,13 +140,12 @@ private:
         if (!r.has("radii")) return {};
         std::vector<double> radii = r.numberList("radii");
         if (radii.size() != count)
-            throw r.error("radii", fmt::format("expected {} radii (one per point), found {}",
-                                               count, radii.size()));
+            throw r.error("radii", fmt::format("expected {} radii (one per point), found {}", count,
+                                               radii.size()));
         for (size_t i = 0; i < radii.size(); ++i)
             if (!std::isfinite(radii[i]) || radii[i] < 0)
-                throw r.error("radii",
-                              fmt::format("entry {} is {}: expected a radius >= 0 (m)", i,
-                                          radii[i]));
+                throw r.error("radii", fmt::format("entry {} is {}: expected a radius >= 0 (m)", i,
+                                                   radii[i]));
         return radii;
     }
 
@@ -299,8 +298,7 @@ private:
         else if (b.has("start_radius"))
             throw b.error("start_radius", "a start radius needs \"radii\" for the points too");
         if (births.empty()) births = birthTimes(points, att.birth);
-        ChainGeometry geometry{points, births,
-                               static_cast<uint32_t>(skeleton_.segments().size())};
+        ChainGeometry geometry{points, births, static_cast<uint32_t>(skeleton_.segments().size())};
         skeleton_.addBranch(att.segment, geometry.points, geometry.births,
                             {props.gamma, props.deathTime, props.diebackExponent}, radii);
         for (auto& sub : b.objectList("branches")) parseBranch(sub, geometry, false);

@@ -59,7 +59,8 @@ private:
         const SkeletonNode& start = sk_.node(nodes[0]);
         nlohmann::json b;
         b["start"] = point(start.position);
-        b["on_segment"] = first.parent - static_cast<int32_t>(sk_.chain(c.parentChain).firstSegment);
+        b["on_segment"] =
+            first.parent - static_cast<int32_t>(sk_.chain(c.parentChain).firstSegment);
         b["start_birth_time"] = start.birthTime;
         nlohmann::json pts = nlohmann::json::array(), births = nlohmann::json::array(),
                        radii = nlohmann::json::array();
