@@ -9,6 +9,7 @@
 #include "arguments.h"
 #include "grain/grain_params.h"
 #include "renderer/bake_specs.h"
+#include "renderer/colour_management.h"
 #include "renderer/grid_bake.h"
 #include "renderer/grid_writers.h"
 #include "skeleton/skeleton_file.h"
@@ -137,6 +138,9 @@ void addBakeCommands(CLI::App& app) {
         ->default_val("512x512");
     slice->add_option("--bottom", bottom, "Boards: height of the image's lower edge (m)")
         ->default_val(0.0);
+    static std::string slicePng;
+    slice->add_option("--png", slicePng,
+                      "Also write an 8-bit sRGB preview of the colour through OpenColorIO");
     slice->callback([] {
         auto t0 = std::chrono::steady_clock::now();
         SliceSpec spec;
@@ -154,6 +158,7 @@ void addBakeCommands(CLI::App& app) {
                 "command line", "--res",
                 fmt::format("{} is over the cap of {} M pixels", res, kMaxSlicePixels >> 20));
         checkOutputName(sliceCommon.output, {".exr"});
+        if (!slicePng.empty()) checkOutputName(slicePng, {".png"});
         auto wood = loadWood(sliceCommon);
         BakedGrid grid = sliceGrid(wood->skeleton, spec);
         addMetadata(grid, sliceCommon, *wood);
@@ -162,6 +167,17 @@ void addBakeCommands(CLI::App& app) {
                         spec.width, spec.height, spec.bottom);
         bakeGrid(*wood->shader, grid, {sliceCommon.threads, sliceCommon.quiet, "Baking slice"});
         auto files = writeExr(grid, sliceCommon.output);
+        if (!slicePng.empty()) {
+            // Colour over coverage: outside the felled log (A = 0) stays black.
+            std::vector<float> rgb;
+            rgb.reserve(grid.sampleCount() * 3);
+            for (size_t i = 0; i < grid.sampleCount(); ++i)
+                for (int c = 0; c < 3; ++c)
+                    rgb.push_back(grid.data[i * BakedGrid::kChannels + c] *
+                                  grid.data[i * BakedGrid::kChannels + 3]);
+            writePreviewPng(slicePng, rgb, grid.width, grid.height);
+            files.push_back(slicePng);
+        }
         report(grid, files, since(t0));
     });
 

@@ -10,6 +10,7 @@
 #include "bake_command.h"
 #include "pov_command.h"
 #include "render_command.h"
+#include "tree_command.h"
 #include "util/input_error.h"
 
 int main(int argc, char** argv) {
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
     nenrin::addBakeCommands(app);
     nenrin::addRenderCommand(app);
     nenrin::addPovCommands(app);
+    nenrin::addTreeCommands(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

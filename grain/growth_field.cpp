@@ -78,6 +78,12 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
     // Largest radial speed any path can have (taper x direction x jitter): distance bounds.
     speedBound_ = params_.radialSpeed * (1 + params_.taper.nu) * (1 + params_.direction.strength) /
                   (1 - params_.sway.radialJitter);
+    if (!sk.ringWidths().empty()) {
+        radialGrowth_ = RadialGrowth(sk.ringWidths(), params_.radialSpeed);
+        // Years faster than Sb shorten thickening times by up to this ratio; the distance
+        // bounds pass their years through the age warp, hence the 1/delta power.
+        speedBound_ *= std::pow(radialGrowth_.maxSpeedRatio(), 1 / params_.age.delta);
+    }
 }
 
 GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec3& p,
@@ -102,6 +108,7 @@ GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec
     double years = db * s.inverseSpeed;
     if (speedFactor != 1) years /= speedFactor;
     r.Tb = ageWarp(years, params_.age.delta);
+    if (!radialGrowth_.empty()) r.Tb = radialGrowth_.arrivalTime(r.Ta, r.Tb) - r.Ta;
     r.T = r.Ta + r.Tb;
     if (s.branch) r.T = dieback(r.T, s.deathTime, s.diebackExponent);
     return r;

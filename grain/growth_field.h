@@ -23,6 +23,7 @@
 #include "grain/field_segment.h"
 #include "grain/grain_params.h"
 #include "grain/growth_terms.h"
+#include "grain/radial_growth.h"
 #include "grain/segment_batch.h"
 #include "skeleton/skeleton_index.h"
 
@@ -118,8 +119,9 @@ private:
         double birthBound, gammaBound;
     };
     std::vector<ChainFrame> chainFrames_;
-    double maxGamma_;    ///< largest branch gamma of the skeleton
-    double speedBound_;  ///< largest radial speed of any path over gamma, m/year
+    double maxGamma_;            ///< largest branch gamma of the skeleton
+    RadialGrowth radialGrowth_;  ///< the skeleton's ring widths; empty = constant speed Sb
+    double speedBound_;          ///< largest radial speed of any path over gamma, m/year
 };
 
 }  // namespace nenrin
