@@ -479,6 +479,18 @@ TEST(HayashiOptionsTest, ReadsOverridesFromJson) {
               "p.json: years: expected an integer in [1, 500], found 0");
 }
 
+// The shipped --params example: Table 1's tree No. 13 (3.8 turns/year, 2.0 branches/turn), a
+// 7-year sugi planted in H4 (a = 0.33).
+TEST(HayashiOptionsTest, ShippedParamsFileLoads) {
+    HayashiOptions o = loadHayashiOptions(
+        std::string(NENRIN_SOURCE_DIR) + "/scenes/trees/hayashi-sugi-no13.json", HayashiOptions{});
+    EXPECT_EQ(o.years, 7);
+    EXPECT_EQ(o.turnsPerYear, 3.8);
+    EXPECT_EQ(o.branchesPerTurn, 2.0);
+    EXPECT_EQ(o.crownCoefficient, 0.33);
+    EXPECT_THROW(loadHayashiOptions("/nonexistent/params.json", o), InputError);
+}
+
 TEST(RodriguesRotation, TextbookFormula) {
     Vec3 z{0, 0, 1};
     Vec3 r = rotateAboutAxis({1, 0, 0}, z, kPi / 2);

@@ -130,7 +130,7 @@ TEST(MeasuredBranches, TheShippedCherryLoads) {
         EXPECT_GE(sk.node(s.to).birthTime, sk.node(s.from).birthTime);
         EXPECT_LE(sk.node(s.to).birthTime, 30 + 1e-9);
     }
-    EXPECT_EQ(sk.segment(sk.chain(t.chainOfBranch.at("B200")).firstSegment).deathTime, 12);
+    EXPECT_EQ(sk.segment(sk.chain(t.chainOfBranch.at("B200")).firstSegment).deathTime, 18);
     EXPECT_NO_THROW(parseSkeleton(skeletonToJson(sk, {}), "cherry.json"));
 }
 
