@@ -119,6 +119,46 @@ struct BranchSpec {
     double gamma = 0;  // 0: from the diameters
 };
 
+/// The branch objects keyed by number, in file order.
+std::vector<BranchSpec> readBranchSpecs(const nlohmann::json& branchesJson, const std::string& file,
+                                        double unit) {
+    std::vector<BranchSpec> specs;
+    size_t width = 0;
+    std::string widthKey;
+    for (auto it = branchesJson.begin(); it != branchesJson.end(); ++it) {
+        BranchSpec s;
+        s.where = "branches." + it.key();
+        s.number = parseBranchNumber(it.key(), file, s.where);
+        if (width == 0) {
+            width = it.key().size();
+            widthKey = it.key();
+        } else if (it.key().size() != width) {
+            throw InputError(file, s.where,
+                             fmt::format("branch numbers must all have the same number of digits "
+                                         "(\"{}\" has {}, \"{}\" has {})",
+                                         widthKey, width - 1, it.key(), it.key().size() - 1));
+        }
+        if (!it.value().is_object())
+            throw InputError(file, s.where,
+                             fmt::format("expected an object, found {}", jsonTypeName(it.value())));
+        nlohmann::json rest = it.value();
+        if (!rest.contains("internodes"))
+            throw InputError(file, s.where + ".internodes", "missing required internode list");
+        s.internodes = readInternodes(rest["internodes"], file, s.where + ".internodes", unit);
+        rest.erase("internodes");
+        JsonReader b(rest, file, s.where);
+        if (!b.has("node"))
+            throw b.error("node", "missing: the parent's node the branch leaves from");
+        s.node = b.integer("node", 0, 0, 1000000);
+        if (b.has("start_time")) s.startTime = b.nonNegative("start_time", 0);
+        if (b.has("death_time")) s.deathTime = b.requirePositive("death_time");
+        if (b.has("gamma")) s.gamma = b.requirePositive("gamma");
+        b.finish();
+        specs.push_back(std::move(s));
+    }
+    return specs;
+}
+
 double pathLength(const std::vector<Internode>& v) {
     double s = 0;
     for (const auto& n : v) s += n.length;
@@ -186,40 +226,7 @@ MeasuredTree parseMeasuredTree(const nlohmann::json& json, const std::string& fi
             fmt::format("expected an object keyed by branch number (\"B100\": {{...}}), "
                         "found {}",
                         jsonTypeName(branchesJson)));
-    std::vector<BranchSpec> specs;
-    size_t width = 0;
-    std::string widthKey;
-    for (auto it = branchesJson.begin(); it != branchesJson.end(); ++it) {
-        BranchSpec s;
-        s.where = "branches." + it.key();
-        s.number = parseBranchNumber(it.key(), file, s.where);
-        if (width == 0) {
-            width = it.key().size();
-            widthKey = it.key();
-        } else if (it.key().size() != width) {
-            throw InputError(file, s.where,
-                             fmt::format("branch numbers must all have the same number of digits "
-                                         "(\"{}\" has {}, \"{}\" has {})",
-                                         widthKey, width - 1, it.key(), it.key().size() - 1));
-        }
-        if (!it.value().is_object())
-            throw InputError(file, s.where,
-                             fmt::format("expected an object, found {}", jsonTypeName(it.value())));
-        nlohmann::json rest = it.value();
-        if (!rest.contains("internodes"))
-            throw InputError(file, s.where + ".internodes", "missing required internode list");
-        s.internodes = readInternodes(rest["internodes"], file, s.where + ".internodes", unit);
-        rest.erase("internodes");
-        JsonReader b(rest, file, s.where);
-        if (!b.has("node"))
-            throw b.error("node", "missing: the parent's node the branch leaves from");
-        s.node = b.integer("node", 0, 0, 1000000);
-        if (b.has("start_time")) s.startTime = b.nonNegative("start_time", 0);
-        if (b.has("death_time")) s.deathTime = b.requirePositive("death_time");
-        if (b.has("gamma")) s.gamma = b.requirePositive("gamma");
-        b.finish();
-        specs.push_back(std::move(s));
-    }
+    std::vector<BranchSpec> specs = readBranchSpecs(branchesJson, file, unit);
     // Parents before children: by order, then by number.
     std::sort(specs.begin(), specs.end(), [](const BranchSpec& a, const BranchSpec& b) {
         return a.number.order != b.number.order ? a.number.order < b.number.order
@@ -282,12 +289,17 @@ MeasuredTree parseMeasuredTree(const nlohmann::json& json, const std::string& fi
             start = std::max(s.startTime, parentTime);
         }
         BuiltChain c = layOut(parent.points[node], start, s.internodes, speed);
-        // A branch dies with its parent at the latest.
-        c.deathTime = std::min(s.deathTime, parent.deathTime);
-        if (c.deathTime != kNeverDies && c.deathTime <= start)
+        if (s.deathTime <= start)
             throw InputError(file, s.where + ".death_time",
                              fmt::format("the branch dies at {} years, before it starts ({} years)",
-                                         c.deathTime, start));
+                                         s.deathTime, start));
+        if (parent.deathTime <= start)
+            throw InputError(file, s.where,
+                             fmt::format("its parent {} is dead at {} years, before the branch "
+                                         "starts ({} years)",
+                                         s.number.parentKey(), parent.deathTime, start));
+        // A branch dies with its parent at the latest.
+        c.deathTime = std::min(s.deathTime, parent.deathTime);
         newest = std::max(newest, c.times.back());
         built[s.number.key] = std::move(c);
     }

@@ -179,6 +179,15 @@ TEST(MeasuredBranches, RejectsBadFilesWithPathBearingMessages) {
         "branches": {"B100": {"node": 0, "internodes": [[1, 0, 0, 0.1]], "start_time": 0.5}}})"),
               "tree.json: age: a branch tip would be born at 1.5 years, after the tree's age 1 "
               "(check start_time)");
+    EXPECT_EQ(errorOf(R"({"elongation_speed": 1, "trunk": [[1, 0, 90, 0.2]], "branches": {
+        "B10": {"node": 1, "internodes": [[1, 0, 0, 0.1]], "death_time": 1.5},
+        "B11": {"node": 1, "internodes": [[1, 0, 0, 0.1]]}}})"),
+              "tree.json: branches.B11: its parent B10 is dead at 1.5 years, before the branch "
+              "starts (2 years)");
+    EXPECT_EQ(errorOf(tree(R"("B100": {"node": 1, "internodes": [[1, 0, 0, 0.1]],
+                               "death_time": 0.5})")),
+              "tree.json: branches.B100.death_time: the branch dies at 0.5 years, before it "
+              "starts (1 years)");
     EXPECT_THROW(loadMeasuredBranches("/nonexistent/tree.json"), InputError);
 }
 
