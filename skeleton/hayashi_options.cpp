@@ -155,8 +155,8 @@ HayashiOptions readHayashiOptions(JsonReader& r, const HayashiOptions& base) {
             throw r.error("preset", e.message());
         }
     }
-    o.seed = static_cast<uint64_t>(r.integer(
-        "seed", static_cast<long long>(o.seed & 0x7fffffffffffffffull), 0, 0x7fffffffffffffffll));
+    if (r.has("seed"))  // JSON integers stop at 2^63 - 1; a larger base seed is kept as is
+        o.seed = static_cast<uint64_t>(r.integer("seed", 0, 0, 0x7fffffffffffffffll));
     o.years = static_cast<int>(r.integer("years", o.years, 1, 500));
     o.maxOrder = static_cast<int>(r.integer("max_order", o.maxOrder, 1, 4));
     o.heightGrowth = r.number("height_growth", o.heightGrowth);
@@ -197,6 +197,46 @@ HayashiOptions readHayashiOptions(JsonReader& r, const HayashiOptions& base) {
         throw InputError(r.file(), r.pathOf(e.where()), e.message());
     }
     return o;
+}
+
+nlohmann::json hayashiOptionsToJson(const HayashiOptions& o) {
+    auto order = [](const SubBranchOrder& s) {
+        return nlohmann::json{{"spacing", s.spacing},
+                              {"length", s.maxLength},
+                              {"profile", s.parabolic ? "parabolic" : "constant"},
+                              {"speed", s.speed}};
+    };
+    return nlohmann::json{
+        {"seed", o.seed},
+        {"years", o.years},
+        {"max_order", o.maxOrder},
+        {"height_growth", o.heightGrowth},
+        {"height_growth_variation", o.heightGrowthVariation},
+        {"growing_season", o.growingSeason},
+        {"season_shape", o.seasonShape},
+        {"ring_width", o.ringWidth},
+        {"crown_coefficient", o.crownCoefficient},
+        {"branch_length_variation", o.branchLengthVariation},
+        {"crown_ratio", o.crownRatio},
+        {"arrangement", o.arrangement == BranchArrangement::Whorled ? "whorled" : "spiral"},
+        {"turns_per_year", o.turnsPerYear},
+        {"branches_per_turn", o.branchesPerTurn},
+        {"divergence_sd", o.divergenceSd / kDeg},
+        {"divergence_min", o.divergenceMin / kDeg},
+        {"divergence_max", o.divergenceMax / kDeg},
+        {"clockwise", o.clockwise},
+        {"whorl_min", o.whorlMin},
+        {"whorl_max", o.whorlMax},
+        {"whorl_jitter", o.whorlJitter / kDeg},
+        {"elevation", o.elevation / kDeg},
+        {"elevation_sd", o.elevationSd / kDeg},
+        {"gamma", o.gamma},
+        {"gamma_variation", o.gammaVariation},
+        {"gamma_order_ratio", o.gammaOrderRatio},
+        {"elongation_angle", o.elongationAngle / kDeg},
+        {"second_order", order(o.second)},
+        {"third_order", order(o.third)},
+        {"fourth_order", order(o.fourth)}};
 }
 
 HayashiOptions loadHayashiOptions(const std::string& path, const HayashiOptions& base) {

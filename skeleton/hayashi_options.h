@@ -92,6 +92,9 @@ void validateHayashiOptions(const HayashiOptions& options);
 /// `base`, or from the preset named by a "preset" key; unknown keys are errors (finish() is
 /// called). The result is validated.
 HayashiOptions readHayashiOptions(JsonReader& reader, const HayashiOptions& base);
+/// Every option under its JSON key (angles in degrees, no "preset" key), for the skeleton
+/// file's provenance: readHayashiOptions of it gives the same options back.
+nlohmann::json hayashiOptionsToJson(const HayashiOptions& options);
 /// The same for a JSON file (`--params file.json`).
 HayashiOptions loadHayashiOptions(const std::string& path, const HayashiOptions& base);
 

@@ -478,6 +478,27 @@ TEST(HayashiOptionsTest, ReadsOverridesFromJson) {
               "p.json: years: expected an integer in [1, 500], found 0");
 }
 
+// The options written into a file's provenance read back to the same tree (degrees go out and
+// come back in; a seed past 2^53 survives as an integer).
+TEST(HayashiOptionsTest, OptionsRoundTripThroughJson) {
+    for (const auto& preset : hayashiPresetNames()) {
+        HayashiOptions o = hayashiPreset(preset);
+        o.seed = (1ull << 60) + 3;
+        o.years = 3;
+        o.maxOrder = 2;
+        nlohmann::json j = hayashiOptionsToJson(o);
+        JsonReader r(j, "source");
+        HayashiOptions back = readHayashiOptions(r, HayashiOptions{});
+        EXPECT_EQ(back.seed, o.seed);
+        EXPECT_EQ(back.arrangement, o.arrangement);
+        EXPECT_NEAR(back.divergenceSd, o.divergenceSd, 1e-15);
+        HayashiTree a = growHayashiConifer(o), b = growHayashiConifer(back);
+        ASSERT_EQ(a.skeleton.nodes().size(), b.skeleton.nodes().size()) << preset;
+        for (size_t i = 0; i < a.skeleton.nodes().size(); ++i)
+            ASSERT_NEAR(length(a.skeleton.node(i).position - b.skeleton.node(i).position), 0, 1e-9);
+    }
+}
+
 // The shipped --params example: Table 1's tree No. 13 (3.8 turns/year, 2.0 branches/turn), a
 // 7-year sugi planted in H4 (a = 0.33).
 TEST(HayashiOptionsTest, ShippedParamsFileLoads) {
