@@ -108,7 +108,8 @@ void Generator::placeSpiral() {
         r.spiralAngle = c - first;
         double az = azimuth0 + (o_.clockwise ? -c : c);
         r.azimuth = az - kTwoPi * std::floor(az / kTwoPi);
-        if (r.height > 0) tree_.firstOrder.push_back(r);
+        // (A branch within a few micrometres of the ground would have no trunk segment below it.)
+        if (r.height > 1e-4) tree_.firstOrder.push_back(r);
         c += divergence.draw(rng);
     }
 }
