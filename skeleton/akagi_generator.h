@@ -64,6 +64,7 @@ struct AkagiTree {
     AkagiParams params;
     double years = 0;
     AkagiTreeStats stats;
+    int attempts = 1;  ///< draws growAkagiSpecies needed for a plausible tree
 };
 
 struct AkagiGenerateOptions {
