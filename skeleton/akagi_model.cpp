@@ -1,5 +1,7 @@
 #include "skeleton/akagi_model.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -359,7 +361,9 @@ AkagiFit fitAkagiModel(const ObservationTable& table, const McmcOptions& options
         for (const AkagiParams& row : table.rows) m += row[i];
         fit.initialGuess[i] = m / table.rows.size();
     }
-    for (int i = 0; i < kAkagiParamCount; ++i) {
+    // The sub-models are independent (the observed parameters are data), so they run in
+    // parallel; each has its own random stream, so the result does not depend on threads.
+    tbb::parallel_for(0, kAkagiParamCount, [&](int i) {
         AkagiParamFit& out = fit.params[i];
         SubModel model(table, i, akagiCovariates(i, options.paperCovariates), out);
         out.constant = model.constant();
@@ -376,7 +380,7 @@ AkagiFit fitAkagiModel(const ObservationTable& table, const McmcOptions& options
             model.record();
         }
         model.summarise();
-    }
+    });
     return fit;
 }
 

@@ -54,7 +54,7 @@ ObservationTable syntheticTable(const Truth& truth, uint64_t seed) {
 TEST(AkagiModel, McmcRecoversKnownWeightsShapeAndRate) {
     Truth truth;
     McmcOptions o;
-    o.burnIn = 3000, o.samples = 1000;
+    o.burnIn = 2000, o.samples = 800;
     AkagiFit fit = fitAkagiModel(syntheticTable(truth, 17), o);
     const AkagiParamFit& h = fit.params[0];
     ASSERT_EQ(h.covariates, std::vector<int>{1});
@@ -74,6 +74,21 @@ TEST(AkagiModel, McmcRecoversKnownWeightsShapeAndRate) {
         EXPECT_GT(f.acceptance, 0.2);
         EXPECT_LT(f.acceptance, 0.7);
     }
+}
+
+TEST(AkagiModel, PaperCovariatesPutEveryOtherBranchingParameterInEachRegression) {
+    McmcOptions o;
+    o.burnIn = 300, o.samples = 100, o.paperCovariates = true;
+    AkagiFit fit = fitAkagiModel(akagiSpeciesTable("akaezomatsu"), o);
+    // P1..P10 except itself, minus BranchNum (constant in this table, so dropped).
+    EXPECT_EQ(fit.params[0].covariates, (std::vector<int>{1, 2, 3, 5, 6, 7, 8, 9}));
+    EXPECT_EQ(fit.params[9].covariates, (std::vector<int>{0, 1, 2, 3, 5, 6, 7, 8}));
+    EXPECT_TRUE(fit.params[4].constant);
+    EXPECT_TRUE(fit.params[10].covariates.empty());  // P11-P13 independent
+    EXPECT_TRUE(fit.params[12].covariates.empty());
+    EXPECT_FALSE(fit.params[12].individualEffect);
+    SplitMix rng(1);
+    EXPECT_EQ(drawAkagiParams(fit, rng).branchNum, 5);
 }
 
 TEST(AkagiModel, SameSeedSameFitAndDraws) {
