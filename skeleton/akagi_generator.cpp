@@ -130,10 +130,8 @@ void placeFirstForks(std::vector<Element>& el, double branchPoint) {
         if (rest <= 0) continue;
         double wanted = branchPoint / (1 - branchPoint) * rest;
         // Keep a short stub when BranchPoint ~ 0 so the segment has a length.
-        double scale = std::max(wanted, 0.02 * rest) / el[e].length;
-        // The whole axis keeps its proportions only for the first segment; laterals hanging on
-        // it start from its (moved) end.
-        el[e].length *= scale;
+        // Only this segment changes: what grows from its end keeps its lengths and moves along.
+        el[e].length = std::max(wanted, 0.02 * rest);
     }
 }
 

@@ -70,7 +70,7 @@ struct AkagiTree {
 struct AkagiGenerateOptions {
     /// Per-segment angle noise (sd, deg): the paper gives every segment its own parameters; one
     /// parameter set per tree plus this jitter stands in for that.
-    double angleJitterDeg = 4;
+    double angleJitterDeg = 3;
     /// Segment length = parent length * (growth element / parent's)^lengthExponent. The paper
     /// says only "according to the ratio"; 1 (proportional) gives laterals so short that no
     /// conifer reaches a conical crown, 0.5 gives crown width / height ratios of real trees.

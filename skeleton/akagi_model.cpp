@@ -97,6 +97,7 @@ public:
         id_.assign(T_, 0.0);
         err_.assign(R_, 0.0);
         stepW_.assign(K_, 0.1);
+        counterW_.assign(K_, {});
         eta_.resize(R_);
         ll_.resize(R_);
         recomputeAll();
@@ -148,7 +149,6 @@ public:
     void startSampling() {
         counterW_.assign(K_, {});
         counterRidge_ = counterId_ = counterErr_ = {};
-        sampling_ = true;
     }
 
     void record() {
@@ -204,8 +204,6 @@ public:
             accepted += c->accepted, tried += c->tried;
         o.acceptance = tried > 0 ? double(accepted) / tried : 0;
     }
-
-    bool sampling_ = false;
 
 private:
     bool constant_ = false;
@@ -309,7 +307,7 @@ private:
     double dispersion_ = 1, tauId_ = 20, tauErr_ = 20;
     std::vector<double> stepW_;
     double stepRidge_ = 0.1, stepId_ = 0.1, stepErr_ = 0.1;
-    std::vector<Counter> counterW_ = std::vector<Counter>(16);
+    std::vector<Counter> counterW_;
     Counter counterRidge_, counterId_, counterErr_;
 };
 
