@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <numbers>
 
 #include "util/input_error.h"
@@ -243,19 +242,22 @@ AkagiTree generateAkagiTree(const AkagiParams& params, uint64_t seed, double yea
         return e.dominant == kNone ? years : timeOf(el[e.dominant].g);
     };
 
-    // Chains: from each axis start follow the dominant child. Breadth-first, so a parent chain
-    // is always added before its branches.
+    // Chains: from each axis start follow the dominant child. Depth-first pre-order (a chain,
+    // then the branches along it from base to tip, each with its own branches), so a parent
+    // chain comes before its branches and the order is the one a skeleton file nests them in.
     std::vector<std::vector<int32_t>> chains;
     std::vector<uint32_t> chainOf(el.size()), indexInChain(el.size());
-    std::deque<int32_t> starts{0};
+    std::vector<int32_t> starts{0};
     while (!starts.empty()) {
-        int32_t s = starts.front();
-        starts.pop_front();
+        int32_t s = starts.back();
+        starts.pop_back();
         std::vector<int32_t> chain;
         for (int32_t e = s; e != kNone; e = el[e].dominant) chain.push_back(e);
+        std::vector<int32_t> branches;
         for (int32_t e : chain)
             for (int32_t c : el[e].children)
-                if (c != el[e].dominant) starts.push_back(c);
+                if (c != el[e].dominant) branches.push_back(c);
+        starts.insert(starts.end(), branches.rbegin(), branches.rend());
         chains.push_back(std::move(chain));
     }
 

@@ -435,6 +435,19 @@ ObservationTable akagiSpeciesTable(const std::string& species) {
                          ", or the path of an observation table)");
 }
 
+SkeletonFileInfo akagiSkeletonInfo(const AkagiTree& tree, const std::string& speciesOrTablePath,
+                                   uint64_t seed) {
+    SkeletonFileInfo info;
+    info.description = "Akagi & Kitajima 13-parameter tree (" + speciesOrTablePath + ")";
+    info.source = {{"model", "akagi"},
+                   {"species", speciesOrTablePath},
+                   {"seed", seed},
+                   {"years", tree.years},
+                   {"attempts", tree.attempts},
+                   {"parameters", akagiParamsToJson(tree.params)}};
+    return info;
+}
+
 AkagiTree growAkagiSpecies(const std::string& speciesOrTablePath, uint64_t seed, double years,
                            const AkagiGrowOptions& options) {
     if (!(std::isfinite(years) && years > 0))

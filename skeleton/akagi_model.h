@@ -21,6 +21,7 @@
 #include "skeleton/akagi_generator.h"
 #include "skeleton/akagi_observations.h"
 #include "skeleton/akagi_params.h"
+#include "skeleton/skeleton_writer.h"
 #include "util/hash.h"
 
 namespace nenrin {
@@ -89,6 +90,11 @@ struct AkagiGrowOptions {
 /// The fit uses options.mcmc.seed (the species model does not change with the tree seed).
 AkagiTree growAkagiSpecies(const std::string& speciesOrTablePath, uint64_t seed, double years,
                            const AkagiGrowOptions& options = {});
+
+/// Description and provenance for saveSkeletonFile: model "akagi", the species or table, seed,
+/// years, the 13 drawn parameters and the number of draws the plausibility check needed.
+SkeletonFileInfo akagiSkeletonInfo(const AkagiTree& tree, const std::string& speciesOrTablePath,
+                                   uint64_t seed);
 
 /// The built-in ILLUSTRATIVE tables (data/akagi/<species>.csv, compiled in).
 std::vector<std::string> akagiSpeciesNames();

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "skeleton/skeleton_file.h"
 #include "util/input_error.h"
 #include "util/random_draws.h"
 
@@ -157,6 +158,21 @@ TEST(AkagiModel, GrowSpeciesReturnsAPlausibleTreeAndRejectsUnknownNames) {
     std::string why;
     EXPECT_TRUE(isPlausible(t, &why)) << why;
     EXPECT_GE(t.attempts, 1);
+    // Same seed, same tree; and the skeleton survives the file format's strict loader.
+    AkagiTree again = growAkagiSpecies("yabunikkei", 5, 30, o);
+    ASSERT_EQ(again.skeleton.nodes().size(), t.skeleton.nodes().size());
+    for (size_t i = 0; i < t.skeleton.nodes().size(); ++i)
+        EXPECT_EQ(again.skeleton.node(i).position, t.skeleton.node(i).position);
+    SkeletonFileInfo info = akagiSkeletonInfo(t, "yabunikkei", 5);
+    nlohmann::json j = skeletonToJson(t.skeleton, info);
+    EXPECT_EQ(j["source"]["model"], "akagi");
+    EXPECT_EQ(j["source"]["parameters"]["Height"], t.params.height);
+    Skeleton back = parseSkeleton(j, "tree.json");
+    ASSERT_EQ(back.nodes().size(), t.skeleton.nodes().size());
+    for (size_t i = 0; i < back.nodes().size(); ++i) {
+        EXPECT_EQ(back.node(i).position, t.skeleton.node(i).position);
+        EXPECT_EQ(back.node(i).birthTime, t.skeleton.node(i).birthTime);
+    }
     try {
         growAkagiSpecies("sugi", 5, 30, o);
         FAIL();
