@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "util/input_error.h"
@@ -157,10 +158,10 @@ void placeSegments(std::vector<Element>& el, const AkagiParams& p, double jitter
         for (int32_t c : parent.children) {
             Element& child = el[c];
             Vec3 dir;
-            double tiltJitter = jitter * drawNormal(rng);
+            double tiltJitter = jitter * drawNormal(rng);  // drawn for every child: fixed order
             if (child.childIndex == 0) {
                 dir = rotateAbout(parent.dir, normalize(cross(parent.dir, plane)),
-                                  p.mainAngle * kDegree + tiltJitter);
+                                  p.mainAngle * kDegree);  // no jitter: see options
             } else {
                 // Laterals spread evenly around the parent, opposite the main axis' lean.
                 double around =
@@ -194,6 +195,26 @@ double chainLength(const Skeleton& s, uint32_t c) {
         l += length(s.end(seg) - s.start(seg));
     }
     return l;
+}
+
+// Horizontal distance from the trunk chain at the point's height (the trunk's first segment
+// spanning that height; its nearer end if none does).
+double horizontalOffsetFromTrunk(const Skeleton& s, const Vec3& p) {
+    const SkeletonChain& trunk = s.chain(0);
+    Vec3 axis = s.node(0).position;
+    double bestGap = std::numeric_limits<double>::infinity();
+    for (uint32_t i = 0; i < trunk.segmentCount; ++i) {
+        const SkeletonSegment& seg = s.segment(trunk.firstSegment + i);
+        Vec3 a = s.start(seg), b = s.end(seg);
+        double lo = std::min(a.z, b.z), hi = std::max(a.z, b.z);
+        if (p.z >= lo && p.z <= hi && hi > lo) {
+            axis = lerp(a, b, (p.z - a.z) / (b.z - a.z));
+            break;
+        }
+        for (const Vec3& end : {a, b})
+            if (std::abs(end.z - p.z) < bestGap) bestGap = std::abs(end.z - p.z), axis = end;
+    }
+    return std::hypot(p.x - axis.x, p.y - axis.y);
 }
 
 }  // namespace
@@ -322,7 +343,7 @@ AkagiTree generateAkagiTree(const AkagiParams& params, uint64_t seed, double yea
     st.scale = scale;
     double xlo = 0, xhi = 0, ylo = 0, yhi = 0, zlo = 0, zhi = 0, farthest = -1;
     for (const SkeletonNode& n : tree.skeleton.nodes()) {
-        double off = std::hypot(n.position.x, n.position.y);
+        double off = horizontalOffsetFromTrunk(tree.skeleton, n.position);
         if (off > farthest) {
             farthest = off;
             st.widestRelativeHeight = n.position.z / params.height;

@@ -68,8 +68,10 @@ struct AkagiTree {
 };
 
 struct AkagiGenerateOptions {
-    /// Per-segment angle noise (sd, deg): the paper gives every segment its own parameters; one
-    /// parameter set per tree plus this jitter stands in for that.
+    /// Per-segment angle noise (sd, deg) on the rotation and the laterals' tilt: the paper gives
+    /// every segment its own parameters; one parameter set per tree plus this jitter stands in
+    /// for that. The main axis keeps MainAngle exactly: noise on it accumulates along the axis
+    /// into a leaning leader, which the paper's per-tree parameters do not describe.
     double angleJitterDeg = 3;
     /// Segment length = parent length * (growth element / parent's)^lengthExponent. The paper
     /// says only "according to the ratio"; 1 (proportional) gives laterals so short that no

@@ -112,6 +112,11 @@ SpeciesForm growSpecies(const std::string& name) {
     McmcOptions o;
     o.burnIn = 1500, o.samples = 300;
     AkagiFit fit = fitAkagiModel(akagiSpeciesTable(name), o);
+    for (const AkagiParamFit& f : fit.params) {
+        if (f.constant) continue;
+        EXPECT_GT(f.acceptance, 0.15) << name;  // the adapted random walks move
+        EXPECT_LT(f.acceptance, 0.8) << name;
+    }
     SplitMix rng(11);
     SpeciesForm form;
     const int trees = 6;
