@@ -105,7 +105,7 @@ ObservationTable parseAkagiObservations(const std::string& text, const std::stri
             if (problem.empty() && i == 5 && v <= 0)
                 problem =
                     "expected a number > 0 (Gamma-distributed in the model; write a small "
-                    "share such as 0.01 for a dichotomous fork), found 0";
+                    "share such as 0.001 for a dichotomous fork), found 0";
             if (problem.empty() && i == 12 && v <= 0)
                 problem = "expected a number > 0 (Gamma-distributed in the model), found " + f;
             if (problem.empty() && i == 2 && v <= 0)

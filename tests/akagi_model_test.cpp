@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "skeleton/skeleton_file.h"
 #include "util/input_error.h"
@@ -187,6 +189,42 @@ TEST(AkagiModel, GrowSpeciesReturnsAPlausibleTreeAndRejectsUnknownNames) {
     }
     EXPECT_THROW(growAkagiSpecies("/nonexistent/table.csv", 5, 30, o), InputError);
     EXPECT_THROW(growAkagiSpecies("keyaki", 5, 0, o), InputError);
+}
+
+TEST(AkagiModel, UsersCanGrowFromTheirOwnTableFile) {
+    // A dichotomous species (MainGrowth ~ 0: 100 x MainGrowth < 1, the main child is a leaf).
+    std::string path = (std::filesystem::temp_directory_path() / "akagi_own_table.csv").string();
+    {
+        std::ofstream out(path);
+        out << "# two-way forking shrub\n"
+               "tree,Height,Radius,LeafNum,LeafSize,BranchNum,MainGrowth,MainAngle,MainRotation,"
+               "SubGrowth,SubAngle,BranchPoint,Horizontal,GrowthGain\n";
+        const char* rows[] = {"a,3.0,0.05,4,0.05,3,0.0010,0,90,0.49,30,0.20,0.1,0.05",
+                              "a,3.0,0.05,5,0.05,3,0.0012,1,92,0.50,32,0.22,0.1,0.04",
+                              "b,3.4,0.06,4,0.06,3,0.0008,-1,88,0.48,28,0.18,0.2,0.06",
+                              "b,3.4,0.06,6,0.06,3,0.0011,0,91,0.50,31,0.21,0.1,0.05",
+                              "c,2.7,0.04,5,0.05,3,0.0009,2,89,0.49,29,0.19,0.1,0.05",
+                              "c,2.7,0.04,4,0.05,3,0.0010,-2,90,0.47,30,0.20,0.2,0.04"};
+        for (const char* r : rows) out << r << "\n";
+    }
+    AkagiGrowOptions o;
+    o.mcmc.burnIn = 500, o.mcmc.samples = 100;
+    AkagiTree t = growAkagiSpecies(path, 3, 20, o);
+    std::filesystem::remove(path);
+    EXPECT_TRUE(isPlausible(t));
+    // Dichotomous: the root's main child is a leaf, the tree forks into two equal laterals.
+    ASSERT_EQ(t.segments[0].children.size(), 2u);
+    EXPECT_NEAR(t.stats.mainAxisLength, t.stats.firstForkHeight, 1e-12);
+}
+
+TEST(AkagiModel, BadMcmcOptionsAreInputErrors) {
+    ObservationTable t = akagiSpeciesTable("keyaki");
+    McmcOptions o;
+    o.samples = 0;
+    EXPECT_THROW(fitAkagiModel(t, o), InputError);
+    o = {};
+    o.burnIn = -1;
+    EXPECT_THROW(fitAkagiModel(t, o), InputError);
 }
 
 }  // namespace
