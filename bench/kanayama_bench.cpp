@@ -46,6 +46,23 @@ void BM_KanayamaLightReference(benchmark::State& state) {
         benchmark::DoNotOptimize(nenrin::leafLightReference(spheres, dome, p).data());
     state.SetItemsProcessed(state.iterations() * state.range(0));
 }
+void BM_KanayamaLightEmbreePackets(benchmark::State& state) {
+    auto spheres = crown(static_cast<int>(state.range(0)));
+    nenrin::SkyDome dome = nenrin::makeSkyDome(96);
+    nenrin::LeafLightParameters p;
+    p.packets = true;
+    nenrin::LeafLightTracer tracer;
+    for (auto _ : state) benchmark::DoNotOptimize(tracer.compute(spheres, dome, p).data());
+    state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_KanayamaLightEmbreePackets)
+    ->Name("BM_KanayamaLight/EmbreePackets16")
+    ->RangeMultiplier(10)
+    ->Range(100, 10000)
+    ->Arg(3000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 BENCHMARK(BM_KanayamaLightReference)
     ->Name("BM_KanayamaLight/Reference")
     ->RangeMultiplier(10)

@@ -242,7 +242,26 @@ std::vector<SphereLight> LeafLightTracer::compute(const std::vector<LeafSphere>&
             std::fill(quanta.begin(), quanta.end(), 0);
             ctx.origin = spheres[i].center;
             ctx.self = static_cast<uint32_t>(i);
-            for (size_t k0 = 0; k0 < K; k0 += 16) {
+            if (!p.packets) {
+                for (size_t k = 0; k < K; ++k) {
+                    const Vec3& d = dome.directions[k];
+                    alignas(16) RTCRay ray;
+                    ray.org_x = static_cast<float>(ctx.origin.x);
+                    ray.org_y = static_cast<float>(ctx.origin.y);
+                    ray.org_z = static_cast<float>(ctx.origin.z);
+                    ray.dir_x = static_cast<float>(d.x);
+                    ray.dir_y = static_cast<float>(d.y);
+                    ray.dir_z = static_cast<float>(d.z);
+                    ray.tnear = 0;
+                    ray.tfar = std::numeric_limits<float>::infinity();
+                    ray.time = 0;
+                    ray.mask = 0xffffffffu;
+                    ray.id = static_cast<unsigned>(k);
+                    ray.flags = 0;
+                    rtcOccluded1(scene, &ctx.context, &ray);
+                }
+            }
+            for (size_t k0 = 0; p.packets && k0 < K; k0 += 16) {
                 alignas(64) RTCRay16 rays;
                 alignas(64) int valid[16];
                 for (int l = 0; l < 16; ++l) {

@@ -37,6 +37,9 @@ struct LeafLightParameters {
     double extinction = 12;  ///< 1/m inside a leaf sphere
     double brightness = 1;   ///< sky brightness: scales every sphere's light
     int threads = 0;         ///< 0 = all worker threads
+    /// Embree: 16-ray packets (rtcOccluded16) instead of single rays (rtcOccluded1). The rays
+    /// of one sphere share an origin but fan out over the dome, so packets lose (~2x slower).
+    bool packets = false;
 };
 
 struct SphereLight {
@@ -48,8 +51,9 @@ struct SphereLight {
 std::vector<SphereLight> leafLightReference(const std::vector<LeafSphere>& spheres,
                                             const SkyDome& dome, const LeafLightParameters& p);
 
-/// Embree occlusion rays (16-ray packets, spheres as user geometry, every hit accumulated in
-/// the occlusion callback): O(n K log n). Holds an Embree device; one per simulation.
+/// Embree occlusion rays (spheres as user geometry, every hit accumulated in the occlusion
+/// callback, rays end early once a direction is dark): O(n K (log n + hits per ray)). Holds an
+/// Embree device; one per simulation.
 class LeafLightTracer {
 public:
     LeafLightTracer();

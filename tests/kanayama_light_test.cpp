@@ -46,11 +46,15 @@ TEST(KanayamaLight, EmbreeAgreesWithTheProjectionReference) {
         std::vector<LeafSphere> spheres = randomCrown(seed, 300);
         std::vector<SphereLight> ref = leafLightReference(spheres, dome, p);
         std::vector<SphereLight> emb = tracer.compute(spheres, dome, p);
+        LeafLightParameters packets = p;
+        packets.packets = true;
+        std::vector<SphereLight> emb16 = tracer.compute(spheres, dome, packets);
         ASSERT_EQ(ref.size(), emb.size());
         double darkest = 1;
         for (size_t i = 0; i < ref.size(); ++i) {
             // Same integer chord sums: equal up to float culling of grazing hits.
             EXPECT_NEAR(emb[i].light, ref[i].light, 1e-9) << "sphere " << i;
+            EXPECT_NEAR(emb16[i].light, ref[i].light, 1e-9) << "sphere " << i;
             EXPECT_NEAR(dot(emb[i].brightestDirection, ref[i].brightestDirection), 1.0, 1e-9);
             darkest = std::min(darkest, ref[i].light);
         }
