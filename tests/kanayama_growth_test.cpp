@@ -128,6 +128,16 @@ TEST(KanayamaGrowth, LeaderRemovalBreaksDormantBuds) {
     EXPECT_GE(with, without + 4);
 }
 
+// The other release: an old shoot whose hormone exceeds the threshold breaks dormant buds.
+TEST(KanayamaGrowth, HighHormoneBreaksDormantBuds) {
+    KanayamaOptions o = kanayamaPreset("cherry");
+    o.years = 8;
+    int off = growKanayamaTree(o).stats.dormantBudsBroken;
+    o.species.dormantBreakVigour = 2;
+    int on = growKanayamaTree(o).stats.dormantBudsBroken;
+    EXPECT_GT(on, off + 10);
+}
+
 bool sameTree(const KanayamaTree& a, const KanayamaTree& b) {
     if (a.shoots.size() != b.shoots.size()) return false;
     for (size_t i = 0; i < a.shoots.size(); ++i) {
@@ -148,7 +158,12 @@ bool sameTree(const KanayamaTree& a, const KanayamaTree& b) {
 TEST(KanayamaGrowth, SeedsAndThreads) {
     KanayamaOptions o = kanayamaPreset("zelkova");
     o.years = 10;
-    KanayamaTree a = growKanayamaTree(o);
+    int calls = 0;
+    KanayamaTree a = growKanayamaTree(o, [&](int year, int years) {
+        EXPECT_EQ(year, calls++);
+        EXPECT_EQ(years, 10);
+    });
+    EXPECT_EQ(calls, 10);
     EXPECT_TRUE(sameTree(a, growKanayamaTree(o)));  // bitwise the same
     o.threads = 1;
     EXPECT_TRUE(sameTree(a, growKanayamaTree(o)));  // whatever the thread count
