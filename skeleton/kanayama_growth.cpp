@@ -80,7 +80,7 @@ public:
         releaseDormantBuds(year, firstNew, hormone);
         for (size_t i = 0; i < shoots_.size(); ++i)
             if (shoots_[i].alive) shoots_[i].hormone = hormone[i];
-        recordYear(year, firstNew);
+        recordYear(firstNew);
     }
 
     KanayamaTree finish() {
@@ -361,7 +361,7 @@ private:
         inflow_ = std::move(inflow);
     }
 
-    void recordYear(int year, size_t firstNew) {
+    void recordYear(size_t firstNew) {
         double height = 0;
         for (const KanayamaShoot& sh : shoots_)
             if (sh.alive)
@@ -369,7 +369,6 @@ private:
         stats_.heightPerYear.push_back(height);
         stats_.newShootsPerYear.push_back(static_cast<int>(shoots_.size() - firstNew));
         stats_.trunkBaseRadiusPerYear.push_back(std::sqrt(shoots_[0].area / std::numbers::pi));
-        (void)year;
     }
 
     const KanayamaOptions& o_;

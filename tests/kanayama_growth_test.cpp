@@ -4,11 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
 
+#include "skeleton/skeleton_file.h"
+#include "skeleton/skeleton_writer.h"
 #include "util/input_error.h"
 #include "util/json_reader.h"
 
@@ -252,6 +255,38 @@ TEST(KanayamaGrowth, SkeletonIsValid) {
             if (!s.removed) expected += s.nodes.size() - 1;
         EXPECT_EQ(sk.nodes().size(), expected + sk.chains().size());
     }
+}
+
+// The skeleton file loader checks the format's rules (segments, birth times, branch starts on
+// the parent, gamma, death times) and must give the same tree back.
+TEST(KanayamaGrowth, SkeletonSurvivesTheFileFormat) {
+    const KanayamaTree& t = grow("zelkova", 1);
+    Skeleton back = parseSkeleton(
+        skeletonToJson(t.skeleton, {"kanayama zelkova", {{"model", "kanayama"}}}), "k.json");
+    ASSERT_EQ(back.chains().size(), t.skeleton.chains().size());
+    ASSERT_EQ(back.nodes().size(), t.skeleton.nodes().size());
+    EXPECT_EQ(back.ringWidths().size(), t.skeleton.ringWidths().size());
+    // Chains may come back in another order (the file nests branches in their parents):
+    // compare the trunk node by node and order-free sums over everything.
+    const SkeletonChain& trunk = t.skeleton.chain(0);
+    ASSERT_EQ(back.chain(0).segmentCount, trunk.segmentCount);
+    for (uint32_t k = 0; k < trunk.segmentCount; ++k) {
+        const SkeletonSegment& a = t.skeleton.segment(trunk.firstSegment + k);
+        const SkeletonSegment& b = back.segment(back.chain(0).firstSegment + k);
+        EXPECT_LT(length(t.skeleton.end(a) - back.end(b)), 1e-9);
+        EXPECT_NEAR(t.skeleton.node(a.to).birthTime, back.node(b.to).birthTime, 1e-9);
+    }
+    auto sums = [](const Skeleton& s) {
+        double len = 0, gamma = 0, dead = 0;
+        for (const SkeletonSegment& g : s.segments()) {
+            len += length(s.end(g) - s.start(g));
+            gamma += g.gamma;
+            dead += std::isfinite(g.deathTime) ? g.deathTime : 0;
+        }
+        return std::array<double, 3>{len, gamma, dead};
+    };
+    auto a = sums(t.skeleton), b = sums(back);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], 1e-6 * (1 + std::abs(a[i]))) << i;
 }
 
 TEST(KanayamaGrowth, YoungBranchesThickenSlowerThanTheTrunk) {
