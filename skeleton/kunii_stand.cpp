@@ -259,6 +259,8 @@ void validateStandOptions(const StandOptions& o) {
     auto finite = [](double v) { return std::isfinite(v); };
     require(o.trees >= 0 && o.trees <= 100000, "trees", "a count in 0..100000", o.trees);
     require(o.years >= 0 && o.years <= 10000, "years", "a count of years in 0..10000", o.years);
+    require(o.seed < (1ull << 53), "seed", "a seed below 2^53 (exact in JSON files)",
+            static_cast<double>(o.seed));
     require(finite(o.plotSize) && o.plotSize > 0, "plot_size", "a side > 0 (m)", o.plotSize);
     require(finite(o.irradiance) && o.irradiance >= 0, "irradiance",
             "a relative irradiance >= 0", o.irradiance);

@@ -50,7 +50,7 @@ struct KuniiAllometry {
 struct StandOptions {
     int trees = 100;       ///< trees at year 0 (seedlings at random positions)
     int years = 100;       ///< years simulated
-    uint64_t seed = 1;
+    uint64_t seed = 1;     ///< < 2^53, so that stand files hold it exactly
     double plotSize = 40;  ///< m, side of the square periodic plot
     double irradiance = 1; ///< I0, relative (1 = full sun), when `schedule` is empty
     std::vector<IrradianceKey> schedule;  ///< I0 over the years (hysteresis experiments)

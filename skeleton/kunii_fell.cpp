@@ -1,0 +1,213 @@
+#include "skeleton/kunii_fell.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "util/input_error.h"
+
+namespace nenrin {
+
+namespace {
+
+constexpr int kSuppressedMinAge = 20;
+constexpr int kSuppressedWindow = 10;
+
+/// A tree's state by age: age 0 = the seedling, age k = end of its year k - 1.
+class Life {
+public:
+    explicit Life(const StandTree& t) : t_(t) {}
+    int years() const { return static_cast<int>(t_.history.size()); }
+    const TreeYear& at(int age) const {
+        return age <= 0 ? t_.initial : t_.history[static_cast<size_t>(std::min(age, years()) - 1)];
+    }
+    /// The age (fractional: linear within the year) when the leader reached height z.
+    double ageAtHeight(double z) const {
+        if (z <= at(0).height) return 0;
+        for (int a = 1; a <= years(); ++a) {
+            double h0 = at(a - 1).height, h1 = at(a).height;
+            if (z <= h1) return h1 > h0 ? a - 1 + (z - h0) / (h1 - h0) : a;
+        }
+        return years();
+    }
+    /// The first age at which the crown base stood at or above z, or -1 if it never did.
+    int ageCrownBasePassed(double z) const {
+        for (int a = 0; a <= years(); ++a)
+            if (at(a).crownBase >= z) return a;
+        return -1;
+    }
+    /// Stem radius at a fractional age (linear within the year).
+    double stemRadius(double age) const {
+        int a = static_cast<int>(std::floor(age));
+        double u = age - a;
+        return at(a).stemRadius * (1 - u) + at(a + 1).stemRadius * u;
+    }
+
+private:
+    const StandTree& t_;
+};
+
+}  // namespace
+
+std::vector<double> standTreeRingWidths(const StandTree& tree, double minRingWidth) {
+    std::vector<double> widths;
+    double previous = 0;
+    for (const TreeYear& y : tree.history) {
+        widths.push_back(std::max(y.stemRadius - previous, minRingWidth));
+        previous = y.stemRadius;
+    }
+    return widths;
+}
+
+Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& options) {
+    if (treeId >= stand.trees.size())
+        throw InputError("stand", "tree",
+                         fmt::format("tree {} does not exist: the stand has trees 0..{}", treeId,
+                                     stand.trees.size() - 1));
+    const StandTree& tree = stand.trees[treeId];
+    if (tree.history.empty())
+        throw InputError("stand", "tree",
+                         fmt::format("tree {} died in its first year: nothing to fell", treeId));
+    if (!(options.minRingWidth > 0) || !std::isfinite(options.minRingWidth))
+        throw InputError("fell options", "min_ring_width",
+                         fmt::format("is {}: expected a width > 0 (m)", options.minRingWidth));
+    Life life(tree);
+    const int age = life.years();
+    const TreeYear& final = life.at(age);
+    std::vector<ASystemAxis> axes = growASystem(options.form, options.trunkSway);
+
+    // Size: the trunk's top at the final height; the crown's reach scaled (horizontally, an
+    // affine map, so branches stay on their parents) to the final crown radius.
+    double scale = final.height / axes[0].points.back().z;
+    double reach = 0;
+    for (size_t a = 1; a < axes.size(); ++a)
+        for (const Vec3& p : axes[a].points) reach = std::max(reach, std::hypot(p.x, p.y));
+    double horizontal = reach > 0 ? std::clamp(final.crownRadius / (reach * scale), 0.25, 4.0) : 1;
+    for (ASystemAxis& axis : axes)
+        for (Vec3& p : axis.points) p = {p.x * scale * horizontal, p.y * scale * horizontal, p.z * scale};
+
+    // Each first-order lateral and everything on it forms one limb: born when the leader
+    // passed its fork, dead when the crown base passed it; a dead limb is as long as it had
+    // grown by then (shrunk about its base), and grows at one speed along its paths.
+    std::vector<int> limbOf(axes.size(), -1);
+    for (size_t a = 1; a < axes.size(); ++a)
+        limbOf[a] = axes[a].order == 1 ? static_cast<int>(a)
+                                       : limbOf[static_cast<size_t>(axes[a].parent)];
+    struct Limb {
+        double born = 0, stop = 0, death = kNeverDies, shrink = 1, longestPath = 0;
+        Vec3 base;
+    };
+    std::vector<Limb> limbs(axes.size());
+    std::vector<std::vector<double>> path(axes.size());  // path length from the limb base
+    for (size_t a = 1; a < axes.size(); ++a) {
+        const ASystemAxis& axis = axes[a];
+        const Vec3 start = axis.points[0];
+        if (axis.order == 1) {
+            Limb& l = limbs[a];
+            l.base = start;
+            l.born = life.ageAtHeight(start.z);
+            int died = life.ageCrownBasePassed(start.z);
+            l.stop = died >= 0 ? std::max<double>(died, l.born) : age;
+            if (died >= 0) l.death = l.stop;
+            l.shrink = died >= 0 && age > l.born
+                           ? std::clamp((l.stop - l.born) / (age - l.born), 0.05, 1.0)
+                           : 1.0;
+        }
+    }
+    for (size_t a = 1; a < axes.size(); ++a) {
+        ASystemAxis& axis = axes[a];
+        const Limb& l = limbs[static_cast<size_t>(limbOf[a])];
+        for (Vec3& p : axis.points) p = l.base + (p - l.base) * l.shrink;
+        double s = axis.order == 1 ? 0.0
+                                   : path[static_cast<size_t>(axis.parent)]
+                                         [static_cast<size_t>(axis.parentSegment + 1)];
+        path[a].push_back(s);
+        for (size_t i = 1; i < axis.points.size(); ++i)
+            path[a].push_back(path[a].back() + length(axis.points[i] - axis.points[i - 1]));
+        Limb& lm = limbs[static_cast<size_t>(limbOf[a])];
+        lm.longestPath = std::max(lm.longestPath, path[a].back());
+    }
+
+    Skeleton sk;
+    std::vector<uint32_t> firstSegment(axes.size());
+    const double wr = options.form.widthRatio;
+    for (size_t a = 0; a < axes.size(); ++a) {
+        const ASystemAxis& axis = axes[a];
+        std::vector<double> births, radii;
+        if (a == 0) {
+            for (const Vec3& p : axis.points) {
+                double born = life.ageAtHeight(p.z);
+                births.push_back(born);
+                // The stem at a node holds the rings laid since the leader passed it.
+                radii.push_back(std::max(life.stemRadius(age) - life.stemRadius(born), 1e-3));
+            }
+            firstSegment[a] = 0;
+            sk.addTrunk(axis.points, births, radii);
+            continue;
+        }
+        const Limb& l = limbs[static_cast<size_t>(limbOf[a])];
+        double gamma = std::pow(wr, axis.order);
+        for (double s : path[a]) {
+            double born = l.longestPath > 0 ? l.born + (l.stop - l.born) * s / l.longestPath
+                                            : l.born;
+            births.push_back(born);
+            radii.push_back(
+                std::max(gamma * (life.stemRadius(l.stop) - life.stemRadius(born)), 5e-4));
+        }
+        ChainProperties props;
+        props.gamma = gamma;
+        props.deathTime = l.death;
+        props.diebackExponent = 1;
+        firstSegment[a] = static_cast<uint32_t>(sk.segments().size());
+        sk.addBranch(firstSegment[static_cast<size_t>(axis.parent)] +
+                         static_cast<uint32_t>(axis.parentSegment),
+                     axis.points, births, props, radii);
+    }
+    sk.setRingWidths(standTreeRingWidths(tree, options.minRingWidth));
+    return sk;
+}
+
+TreePick treePickFromName(const std::string& name) {
+    if (name == "dominant") return TreePick::Dominant;
+    if (name == "suppressed") return TreePick::Suppressed;
+    throw InputError("fell options", "pick",
+                     fmt::format("unknown tree pick \"{}\": expected dominant or suppressed", name));
+}
+
+std::vector<std::string> treePickNames() { return {"dominant", "suppressed"}; }
+
+uint32_t pickStandTree(const Stand& stand, TreePick pick) {
+    int best = -1;
+    double bestScore = 0;
+    for (const StandTree& t : stand.trees) {
+        if (!t.alive() || t.history.empty()) continue;
+        double score;
+        if (pick == TreePick::Dominant) {
+            score = t.last().height;
+        } else {
+            int n = static_cast<int>(t.history.size());
+            if (n < kSuppressedMinAge) continue;
+            double light = 0;
+            for (int k = n - kSuppressedWindow; k < n; ++k) {
+                double I0 = stand.irradiance[static_cast<size_t>(t.birthYear + k)];
+                light += I0 > 0 ? t.history[static_cast<size_t>(k)].irradiance / I0 : 0;
+            }
+            score = -light;
+        }
+        if (best < 0 || score > bestScore) {
+            best = static_cast<int>(t.id);
+            bestScore = score;
+        }
+    }
+    if (best < 0)
+        throw InputError("stand", "pick",
+                         pick == TreePick::Dominant
+                             ? std::string("no living tree to pick")
+                             : fmt::format("no living tree at least {} years old to pick as "
+                                           "suppressed",
+                                           kSuppressedMinAge));
+    return static_cast<uint32_t>(best);
+}
+
+}  // namespace nenrin
