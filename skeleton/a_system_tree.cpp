@@ -64,10 +64,11 @@ private:
             axes_[static_cast<size_t>(id)].points.push_back(p);
             // The fork: lateral on one side of the branching plane, continuation on the other.
             Vec3 lateralDir = normalize(rotate(dir, normal, a2));
-            Vec3 lateralNormal = normalize(rotate(normal, lateralDir, p_.divergenceAngle * kDegree));
+            Vec3 lateralNormal =
+                normalize(rotate(normal, lateralDir, p_.divergenceAngle * kDegree));
             if (k + 1 < forks)
-                laterals.push_back({k, p, lateralDir, lateralNormal, length * p_.contraction2,
-                                    forks - k - 1});
+                laterals.push_back(
+                    {k, p, lateralDir, lateralNormal, length * p_.contraction2, forks - k - 1});
             Vec3 next = normalize(rotate(dir, normal, -a1));
             normal = normalize(rotate(normal, next, p_.divergenceAngle * kDegree));
             // Keep the normal perpendicular to the axis against rounding drift.
@@ -115,10 +116,10 @@ void validateASystemParams(const ASystemParams& p) {
             "a ratio in (0, 1]", p.contraction1);
     require(finite(p.contraction2) && p.contraction2 > 0 && p.contraction2 <= 1, "contraction2",
             "a ratio in (0, 1]", p.contraction2);
-    require(finite(p.branchAngle1) && p.branchAngle1 >= 0 && p.branchAngle1 < 90,
-            "branch_angle1", "an angle in [0, 90) degrees", p.branchAngle1);
-    require(finite(p.branchAngle2) && p.branchAngle2 > 0 && p.branchAngle2 < 180,
-            "branch_angle2", "an angle in (0, 180) degrees", p.branchAngle2);
+    require(finite(p.branchAngle1) && p.branchAngle1 >= 0 && p.branchAngle1 < 90, "branch_angle1",
+            "an angle in [0, 90) degrees", p.branchAngle1);
+    require(finite(p.branchAngle2) && p.branchAngle2 > 0 && p.branchAngle2 < 180, "branch_angle2",
+            "an angle in (0, 180) degrees", p.branchAngle2);
     require(finite(p.widthRatio) && p.widthRatio > 0 && p.widthRatio <= 1, "width_ratio",
             "a ratio in (0, 1]", p.widthRatio);
     require(p.generations >= 1 && p.generations <= 14, "generations", "a count in 1..14",

@@ -36,9 +36,9 @@ void validateASystemParams(const ASystemParams& params);
 
 /// One axis of the form: a polyline starting on its parent axis.
 struct ASystemAxis {
-    int parent = -1;        ///< parent axis, -1 for the trunk
-    int parentSegment = -1; ///< the parent's segment whose end point this axis starts at
-    int order = 0;          ///< 0 trunk, 1 lateral of the trunk, ...
+    int parent = -1;         ///< parent axis, -1 for the trunk
+    int parentSegment = -1;  ///< the parent's segment whose end point this axis starts at
+    int order = 0;           ///< 0 trunk, 1 lateral of the trunk, ...
     std::vector<Vec3> points;
 };
 

@@ -85,15 +85,16 @@ Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& o
         for (const Vec3& p : axes[a].points) reach = std::max(reach, std::hypot(p.x, p.y));
     double horizontal = reach > 0 ? std::clamp(final.crownRadius / (reach * scale), 0.25, 4.0) : 1;
     for (ASystemAxis& axis : axes)
-        for (Vec3& p : axis.points) p = {p.x * scale * horizontal, p.y * scale * horizontal, p.z * scale};
+        for (Vec3& p : axis.points)
+            p = {p.x * scale * horizontal, p.y * scale * horizontal, p.z * scale};
 
     // Each first-order lateral and everything on it forms one limb: born when the leader
     // passed its fork, dead when the crown base passed it; a dead limb is as long as it had
     // grown by then (shrunk about its base), and grows at one speed along its paths.
     std::vector<int> limbOf(axes.size(), -1);
     for (size_t a = 1; a < axes.size(); ++a)
-        limbOf[a] = axes[a].order == 1 ? static_cast<int>(a)
-                                       : limbOf[static_cast<size_t>(axes[a].parent)];
+        limbOf[a] =
+            axes[a].order == 1 ? static_cast<int>(a) : limbOf[static_cast<size_t>(axes[a].parent)];
     struct Limb {
         double born = 0, stop = 0, death = kNeverDies, shrink = 1, longestPath = 0;
         Vec3 base;
@@ -149,8 +150,8 @@ Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& o
         const Limb& l = limbs[static_cast<size_t>(limbOf[a])];
         double gamma = std::pow(wr, axis.order);
         for (double s : path[a]) {
-            double born = l.longestPath > 0 ? l.born + (l.stop - l.born) * s / l.longestPath
-                                            : l.born;
+            double born =
+                l.longestPath > 0 ? l.born + (l.stop - l.born) * s / l.longestPath : l.born;
             births.push_back(born);
             radii.push_back(
                 std::max(gamma * (life.stemRadius(l.stop) - life.stemRadius(born)), 5e-4));
@@ -171,8 +172,9 @@ Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& o
 TreePick treePickFromName(const std::string& name) {
     if (name == "dominant") return TreePick::Dominant;
     if (name == "suppressed") return TreePick::Suppressed;
-    throw InputError("fell options", "pick",
-                     fmt::format("unknown tree pick \"{}\": expected dominant or suppressed", name));
+    throw InputError(
+        "fell options", "pick",
+        fmt::format("unknown tree pick \"{}\": expected dominant or suppressed", name));
 }
 
 std::vector<std::string> treePickNames() { return {"dominant", "suppressed"}; }

@@ -30,8 +30,8 @@ Quartic shifted(const Quartic& p, double s) {
     Quartic out{};
     for (int k = 0; k < 5; ++k)
         for (int j = 0; j <= k; ++j)
-            out[static_cast<size_t>(j)] += p[static_cast<size_t>(k)] * binom[k][j] *
-                                           std::pow(s, k - j);
+            out[static_cast<size_t>(j)] +=
+                p[static_cast<size_t>(k)] * binom[k][j] * std::pow(s, k - j);
     return out;
 }
 

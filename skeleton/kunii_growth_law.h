@@ -22,12 +22,12 @@ namespace nenrin {
 /// The constants of eq. 1. Irradiance is relative (1 = full sun above the canopy); rates are
 /// per year for a reference tree (see StandOptions::referenceWeight).
 struct KuniiGrowthLaw {
-    double a = 0.5;   ///< 1/year: scale of the maximum rate a (g + b)
-    double b = 0.2;   ///< offset of the maximum rate (keeps g = 0 growing)
-    double c = 20;    ///< curvature of the light-response steepness in g
-    double d = 0.5;   ///< species whose light response is the most gradual
-    double e = 0.3;   ///< minimum light-response steepness
-    double f = 0.3;   ///< compensation point per unit g: I_c = f g
+    double a = 0.5;  ///< 1/year: scale of the maximum rate a (g + b)
+    double b = 0.2;  ///< offset of the maximum rate (keeps g = 0 growing)
+    double c = 20;   ///< curvature of the light-response steepness in g
+    double d = 0.5;  ///< species whose light response is the most gradual
+    double e = 0.3;  ///< minimum light-response steepness
+    double f = 0.3;  ///< compensation point per unit g: I_c = f g
 };
 
 /// Eq. 1: relative growth rate (1/year) of species g at irradiance I.
@@ -57,15 +57,15 @@ bool isBistable(const KuniiGrowthLaw& law, double irradiance);
 
 /// The locally best species reached from `gStart` by climbing eq. 1 (exact, not linearised)
 /// within [gMin, gMax]: the species a population that starts at gStart drifts to.
-double followBestSpecies(const KuniiGrowthLaw& law, double irradiance, double gStart,
-                         double gMin, double gMax);
+double followBestSpecies(const KuniiGrowthLaw& law, double irradiance, double gStart, double gMin,
+                         double gMax);
 /// The followed best species along a sequence of irradiances, each step starting from the
 /// previous answer: sweeping I up and down shows the hysteresis of the cusp.
 std::vector<double> sweepBestSpecies(const KuniiGrowthLaw& law,
                                      const std::vector<double>& irradiances, double gStart,
                                      double gMin, double gMax);
 /// The globally best species on a grid of `samples` points over [gMin, gMax].
-double globallyBestSpecies(const KuniiGrowthLaw& law, double irradiance, double gMin,
-                           double gMax, int samples = 1001);
+double globallyBestSpecies(const KuniiGrowthLaw& law, double irradiance, double gMin, double gMax,
+                           int samples = 1001);
 
 }  // namespace nenrin

@@ -25,9 +25,8 @@ double circleOverlap(double r1, double r2, double dist) {
     if (dist <= large - small) return kPi * small * small;
     double a1 = std::acos(std::clamp((dist * dist + r1 * r1 - r2 * r2) / (2 * dist * r1), -1., 1.));
     double a2 = std::acos(std::clamp((dist * dist + r2 * r2 - r1 * r1) / (2 * dist * r2), -1., 1.));
-    double kite = 0.5 * std::sqrt(std::max(
-                            0.0, (-dist + r1 + r2) * (dist + r1 - r2) * (dist - r1 + r2) *
-                                     (dist + r1 + r2)));
+    double kite = 0.5 * std::sqrt(std::max(0.0, (-dist + r1 + r2) * (dist + r1 - r2) *
+                                                    (dist - r1 + r2) * (dist + r1 + r2)));
     return r1 * r1 * a1 + r2 * r2 * a2 - kite;
 }
 
@@ -55,8 +54,8 @@ public:
     }
 
     Stand run(const std::function<void(int, int)>& progress) {
-        for (int i = 0; i < o_.trees; ++i) plant(rng_.uniform() * o_.plotSize,
-                                                rng_.uniform() * o_.plotSize, 0, -1);
+        for (int i = 0; i < o_.trees; ++i)
+            plant(rng_.uniform() * o_.plotSize, rng_.uniform() * o_.plotSize, 0, -1);
         int attempts = static_cast<int>(
             std::lround(o_.germinationAttempts * o_.plotSize * o_.plotSize / 100.0));
         for (int year = 0; year < o_.years; ++year) {
@@ -262,8 +261,8 @@ void validateStandOptions(const StandOptions& o) {
     require(o.seed < (1ull << 53), "seed", "a seed below 2^53 (exact in JSON files)",
             static_cast<double>(o.seed));
     require(finite(o.plotSize) && o.plotSize > 0, "plot_size", "a side > 0 (m)", o.plotSize);
-    require(finite(o.irradiance) && o.irradiance >= 0, "irradiance",
-            "a relative irradiance >= 0", o.irradiance);
+    require(finite(o.irradiance) && o.irradiance >= 0, "irradiance", "a relative irradiance >= 0",
+            o.irradiance);
     for (size_t i = 0; i < o.schedule.size(); ++i) {
         const IrradianceKey& k = o.schedule[i];
         std::string at = fmt::format("schedule[{}]", i);

@@ -48,16 +48,16 @@ struct KuniiAllometry {
 };
 
 struct StandOptions {
-    int trees = 100;       ///< trees at year 0 (seedlings at random positions)
-    int years = 100;       ///< years simulated
-    uint64_t seed = 1;     ///< < 2^53, so that stand files hold it exactly
-    double plotSize = 40;  ///< m, side of the square periodic plot
-    double irradiance = 1; ///< I0, relative (1 = full sun), when `schedule` is empty
+    int trees = 100;                      ///< trees at year 0 (seedlings at random positions)
+    int years = 100;                      ///< years simulated
+    uint64_t seed = 1;                    ///< < 2^53, so that stand files hold it exactly
+    double plotSize = 40;                 ///< m, side of the square periodic plot
+    double irradiance = 1;                ///< I0, relative (1 = full sun), when `schedule` is empty
     std::vector<IrradianceKey> schedule;  ///< I0 over the years (hysteresis experiments)
 
     KuniiGrowthLaw law;
     KuniiAllometry allometry;
-    double crownDensity = 0.2;  ///< t of eq. 4: light attenuation per m of crown (1/m)
+    double crownDensity = 0.2;     ///< t of eq. 4: light attenuation per m of crown (1/m)
     double crownTransmission = 1;  ///< k of eq. 4: I at the crown top = k I0
     int crownLayers = 8;           ///< layers of the crown light integral
 
@@ -95,9 +95,9 @@ inline constexpr int kStillAlive = -1;
 
 struct StandTree {
     uint32_t id = 0;
-    double species = 0;  ///< g
-    double x = 0, y = 0; ///< m, position in the plot
-    int birthYear = 0;   ///< first year the tree grew
+    double species = 0;           ///< g
+    double x = 0, y = 0;          ///< m, position in the plot
+    int birthYear = 0;            ///< first year the tree grew
     int deathYear = kStillAlive;  ///< year it died (it did not grow that year), or kStillAlive
     TreeYear initial;             ///< the seedling, before its first year (irradiance 0)
     /// Ground light where it germinated (relative irradiance); -1 for the trees of year 0.
@@ -111,8 +111,8 @@ struct StandTree {
 
 struct Stand {
     StandOptions options;
-    std::vector<StandTree> trees;       ///< every tree that ever lived, by id
-    std::vector<double> irradiance;     ///< I0 of each year
+    std::vector<StandTree> trees;    ///< every tree that ever lived, by id
+    std::vector<double> irradiance;  ///< I0 of each year
 };
 
 Stand simulateStand(const StandOptions& options,

@@ -16,17 +16,23 @@ namespace {
 constexpr int kVersion = 1;
 
 // The per-tree history is stored column by column (compact and easy to plot).
-const char* const kColumns[] = {"weight", "height", "crown_base", "crown_radius", "stem_radius",
-                                "irradiance"};
+const char* const kColumns[] = {"weight",       "height",      "crown_base",
+                                "crown_radius", "stem_radius", "irradiance"};
 
 double& column(TreeYear& y, int c) {
     switch (c) {
-        case 0: return y.weight;
-        case 1: return y.height;
-        case 2: return y.crownBase;
-        case 3: return y.crownRadius;
-        case 4: return y.stemRadius;
-        default: return y.irradiance;
+        case 0:
+            return y.weight;
+        case 1:
+            return y.height;
+        case 2:
+            return y.crownBase;
+        case 3:
+            return y.crownRadius;
+        case 4:
+            return y.stemRadius;
+        default:
+            return y.irradiance;
     }
 }
 
@@ -78,11 +84,11 @@ StandOptions optionsFromJson(JsonReader& r) {
     auto need = [&](const char* key) {
         if (!r.has(key)) throw r.error(key, "missing required key");
     };
-    for (const char* key : {"trees", "years", "seed", "plot_size", "irradiance", "law",
-                            "allometry", "crown_density", "crown_transmission", "crown_layers",
-                            "species_min", "species_max", "seedling_diameter",
-                            "reference_weight", "max_weight", "germination_attempts",
-                            "germination_light", "years_below_compensation"})
+    for (const char* key :
+         {"trees", "years", "seed", "plot_size", "irradiance", "law", "allometry", "crown_density",
+          "crown_transmission", "crown_layers", "species_min", "species_max", "seedling_diameter",
+          "reference_weight", "max_weight", "germination_attempts", "germination_light",
+          "years_below_compensation"})
         need(key);
     o.trees = static_cast<int>(r.integer("trees", 0, 0, 100000));
     o.years = static_cast<int>(r.integer("years", 0, 0, 10000));
@@ -201,8 +207,8 @@ Stand standFromJson(const nlohmann::json& json, const std::string& file) {
     if (!root.has("trees")) throw root.error("trees", "missing required key");
     for (JsonReader& r : root.objectList("trees")) {
         StandTree t;
-        for (const char* key : {"id", "species", "position", "birth_year", "germination_light",
-                                "initial", "history"})
+        for (const char* key :
+             {"id", "species", "position", "birth_year", "germination_light", "initial", "history"})
             if (!r.has(key)) throw r.error(key, "missing required key");
         t.id = static_cast<uint32_t>(r.integer("id", 0, 0, 0xffffffffll));
         if (t.id != stand.trees.size())
@@ -213,8 +219,8 @@ Stand standFromJson(const nlohmann::json& json, const std::string& file) {
         {
             std::vector<double> p = r.numberList("position");
             if (p.size() != 2)
-                throw r.error("position", fmt::format("expected [x, y], found {} numbers",
-                                                      p.size()));
+                throw r.error("position",
+                              fmt::format("expected [x, y], found {} numbers", p.size()));
             position = {p[0], p[1], 0};
         }
         t.x = position.x;
@@ -238,8 +244,7 @@ Stand standFromJson(const nlohmann::json& json, const std::string& file) {
                 throw history->error(
                     kColumns[c],
                     fmt::format("expected {} values (years {}..{} of the tree's life), found {}",
-                                expected, t.birthYear,
-                                t.birthYear + static_cast<int>(expected) - 1,
+                                expected, t.birthYear, t.birthYear + static_cast<int>(expected) - 1,
                                 columns.back().size()));
             for (size_t i = 0; i < expected; ++i)
                 if (!(columns.back()[i] >= 0) || !std::isfinite(columns.back()[i]))
@@ -250,7 +255,8 @@ Stand standFromJson(const nlohmann::json& json, const std::string& file) {
         history->finish();
         t.history.resize(expected);
         for (size_t i = 0; i < expected; ++i)
-            for (int c = 0; c < 6; ++c) column(t.history[i], c) = columns[static_cast<size_t>(c)][i];
+            for (int c = 0; c < 6; ++c)
+                column(t.history[i], c) = columns[static_cast<size_t>(c)][i];
         for (size_t i = 1; i < expected; ++i)
             if (t.history[i].stemRadius < t.history[i - 1].stemRadius)
                 throw history->error("stem_radius",

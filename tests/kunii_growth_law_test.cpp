@@ -20,9 +20,9 @@ TEST(KuniiGrowthLaw, ZeroAtTheCompensationPointNegativeBelowPositiveAbove) {
         EXPECT_NEAR(relativeGrowthRate(law, g, 100.0), law.a * (g + law.b), 1e-9);
         // The slope at the compensation point is a (g + b) (c (g - d)^2 + e).
         double h = 1e-6;
-        EXPECT_NEAR((relativeGrowthRate(law, g, Ic + h) - relativeGrowthRate(law, g, Ic - h)) /
-                        (2 * h),
-                    compensationSlope(law, g), 1e-5);
+        EXPECT_NEAR(
+            (relativeGrowthRate(law, g, Ic + h) - relativeGrowthRate(law, g, Ic - h)) / (2 * h),
+            compensationSlope(law, g), 1e-5);
     }
 }
 
@@ -60,8 +60,9 @@ TEST(KuniiCusp, StationaryPointsSolveEquation3AndCountThreeWhereBistable) {
         (roots.size() == 3 ? bistable : monostable)++;
         for (double g : roots) {
             double h = 1e-6;
-            double slope = (linearisedGrowthRate(law, g + h, I) -
-                            linearisedGrowthRate(law, g - h, I)) / (2 * h);
+            double slope =
+                (linearisedGrowthRate(law, g + h, I) - linearisedGrowthRate(law, g - h, I)) /
+                (2 * h);
             EXPECT_NEAR(slope, 0.0, 1e-6) << I << " " << g;
         }
     }
