@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -39,7 +40,8 @@ public:
     ASystemGrower(const ASystemParams& p, double sway) : p_(p), sway_(sway) {}
 
     std::vector<ASystemAxis> grow() {
-        growAxis(-1, -1, 0, Vec3{0, 0, 0}, Vec3{0, 0, 1}, Vec3{1, 0, 0}, 1.0, p_.generations);
+        int trunkForks = p_.trunkForks > 0 ? p_.trunkForks : p_.generations;
+        growAxis(-1, -1, 0, Vec3{0, 0, 0}, Vec3{0, 0, 1}, Vec3{1, 0, 0}, 1.0, trunkForks);
         return std::move(axes_);
     }
 
@@ -67,8 +69,8 @@ private:
             Vec3 lateralNormal =
                 normalize(rotate(normal, lateralDir, p_.divergenceAngle * kDegree));
             if (k + 1 < forks)
-                laterals.push_back(
-                    {k, p, lateralDir, lateralNormal, length * p_.contraction2, forks - k - 1});
+                laterals.push_back({k, p, lateralDir, lateralNormal, length * p_.contraction2,
+                                    std::min(forks - k - 1, p_.generations - 1)});
             Vec3 next = normalize(rotate(dir, normal, -a1));
             normal = normalize(rotate(normal, next, p_.divergenceAngle * kDegree));
             // Keep the normal perpendicular to the axis against rounding drift.
@@ -124,6 +126,8 @@ void validateASystemParams(const ASystemParams& p) {
             "a ratio in (0, 1]", p.widthRatio);
     require(p.generations >= 1 && p.generations <= 14, "generations", "a count in 1..14",
             p.generations);
+    require(p.trunkForks >= 0 && p.trunkForks <= 200, "trunk_forks",
+            "a count in 0..200 (0 = generations)", p.trunkForks);
 }
 
 std::vector<ASystemAxis> growASystem(const ASystemParams& params, double trunkSway) {

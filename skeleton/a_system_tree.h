@@ -24,7 +24,11 @@ struct ASystemParams {
     double branchAngle1 = 10;      ///< a1, degrees: deflection of the continuation
     double branchAngle2 = 60;      ///< a2, degrees: angle of the lateral to its parent
     double widthRatio = 0.707;     ///< child / parent width at a fork
-    int generations = 9;           ///< forks along the trunk (2^generations axes in all)
+    int generations = 9;           ///< forks along an axis (2^(generations-1) axes in all)
+    /// Forks along the trunk when it should carry more limbs than `generations` (a forest
+    /// tree's persistent leader); the laterals keep at most generations - 1 forks each.
+    /// 0 = generations: the A-system as published.
+    int trunkForks = 0;
 };
 
 /// "aono-kunii-a" .. "aono-kunii-d" (ABOP Fig. 2.7) and "aono-kunii-spiral" (b with the

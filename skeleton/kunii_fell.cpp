@@ -13,6 +13,8 @@ namespace {
 
 constexpr int kSuppressedMinAge = 20;
 constexpr int kSuppressedWindow = 10;
+/// A living limb at the very top reaches this fraction of the crown radius.
+constexpr double kTopReach = 0.1;
 
 /// A tree's state by age: age 0 = the seedling, age k = end of its year k - 1.
 class Life {
@@ -50,6 +52,13 @@ private:
 
 }  // namespace
 
+ASystemParams defaultFellForm() {
+    ASystemParams p = aSystemPreset("aono-kunii-b");
+    p.generations = 7;
+    p.trunkForks = 20;
+    return p;
+}
+
 std::vector<double> standTreeRingWidths(const StandTree& tree, double minRingWidth) {
     std::vector<double> widths;
     double previous = 0;
@@ -77,45 +86,54 @@ Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& o
     const TreeYear& final = life.at(age);
     std::vector<ASystemAxis> axes = growASystem(options.form, options.trunkSway);
 
-    // Size: the trunk's top at the final height; the crown's reach scaled (horizontally, an
-    // affine map, so branches stay on their parents) to the final crown radius.
+    // The trunk's top at the final height (one uniform scale keeps the A-system's angles).
     double scale = final.height / axes[0].points.back().z;
-    double reach = 0;
-    for (size_t a = 1; a < axes.size(); ++a)
-        for (const Vec3& p : axes[a].points) reach = std::max(reach, std::hypot(p.x, p.y));
-    double horizontal = reach > 0 ? std::clamp(final.crownRadius / (reach * scale), 0.25, 4.0) : 1;
     for (ASystemAxis& axis : axes)
-        for (Vec3& p : axis.points)
-            p = {p.x * scale * horizontal, p.y * scale * horizontal, p.z * scale};
+        for (Vec3& p : axis.points) p = p * scale;
 
     // Each first-order lateral and everything on it forms one limb: born when the leader
-    // passed its fork, dead when the crown base passed it; a dead limb is as long as it had
-    // grown by then (shrunk about its base), and grows at one speed along its paths.
+    // passed its fork, dead when the crown base passed it. Its reach is what the crown had
+    // at the time it stopped growing: a dead limb reaches the crown radius of the year it
+    // died (it was then at the bottom of the cylindrical crown); a living one the final
+    // radius, less towards the top where it is young (a cone over the live crown). The limb
+    // is scaled about its base (a similarity: angles kept, branches stay on their parents)
+    // and grows at one speed along its paths.
     std::vector<int> limbOf(axes.size(), -1);
     for (size_t a = 1; a < axes.size(); ++a)
         limbOf[a] =
             axes[a].order == 1 ? static_cast<int>(a) : limbOf[static_cast<size_t>(axes[a].parent)];
     struct Limb {
-        double born = 0, stop = 0, death = kNeverDies, shrink = 1, longestPath = 0;
+        double born = 0, stop = 0, death = kNeverDies, reach = 0, shrink = 0, longestPath = 0;
         Vec3 base;
     };
     std::vector<Limb> limbs(axes.size());
     std::vector<std::vector<double>> path(axes.size());  // path length from the limb base
     for (size_t a = 1; a < axes.size(); ++a) {
         const ASystemAxis& axis = axes[a];
-        const Vec3 start = axis.points[0];
         if (axis.order == 1) {
             Limb& l = limbs[a];
-            l.base = start;
-            l.born = life.ageAtHeight(start.z);
-            int died = life.ageCrownBasePassed(start.z);
-            l.stop = died >= 0 ? std::max<double>(died, l.born) : age;
-            if (died >= 0) l.death = l.stop;
-            l.shrink = died >= 0 && age > l.born
-                           ? std::clamp((l.stop - l.born) / (age - l.born), 0.05, 1.0)
-                           : 1.0;
+            l.base = axis.points[0];
+            l.born = life.ageAtHeight(l.base.z);
+            int died = life.ageCrownBasePassed(l.base.z);
+            if (died >= 0) {
+                l.stop = std::max<double>(died, l.born);
+                l.death = l.stop;
+                l.reach = life.at(died).crownRadius;
+            } else {
+                l.stop = age;
+                double depth = std::max(final.height - final.crownBase, 1e-9);
+                l.reach = final.crownRadius *
+                          std::clamp((final.height - l.base.z) / depth, kTopReach, 1.0);
+            }
         }
+        Limb& l = limbs[static_cast<size_t>(limbOf[a])];
+        for (const Vec3& p : axis.points)
+            l.shrink = std::max(l.shrink, std::hypot(p.x - l.base.x, p.y - l.base.y));
     }
+    // (shrink held the limb's horizontal reach in the form so far; now the scale factor)
+    for (size_t a = 1; a < axes.size(); ++a)
+        if (axes[a].order == 1)
+            limbs[a].shrink = limbs[a].shrink > 0 ? limbs[a].reach / limbs[a].shrink : 1.0;
     for (size_t a = 1; a < axes.size(); ++a) {
         ASystemAxis& axis = axes[a];
         const Limb& l = limbs[static_cast<size_t>(limbOf[a])];

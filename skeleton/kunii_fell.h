@@ -18,8 +18,12 @@
 
 namespace nenrin {
 
+/// The default form of a felled tree: preset "aono-kunii-b" with a persistent leader of 20
+/// forks (20 limbs to become knots) whose laterals keep at most 6 forks.
+ASystemParams defaultFellForm();
+
 struct FellOptions {
-    ASystemParams form = aSystemPreset("aono-kunii-b");
+    ASystemParams form = defaultFellForm();
     /// Scales the trunk's A-system deflection (0 = straight stem, 1 = as the A-system).
     double trunkSway = 0.2;
     /// Rings narrower than this (m) are written as this: a year without growth still leaves

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -22,6 +23,21 @@ TEST(ASystemTree, EveryForkAddsOneAxis) {
         p.generations = gen;
         EXPECT_EQ(growASystem(p).size(), size_t{1} << (gen - 1)) << gen;
     }
+}
+
+TEST(ASystemTree, ALongerTrunkCarriesMoreLimbsOfBoundedDepth) {
+    ASystemParams p = aSystemPreset("aono-kunii-a");
+    p.generations = 4;
+    p.trunkForks = 12;
+    std::vector<ASystemAxis> axes = growASystem(p);
+    // The trunk forks 12 times: 11 limbs, each an A-system of at most generations - 1 forks.
+    size_t expected = 1;
+    for (int k = 0; k + 1 < p.trunkForks; ++k)
+        expected += size_t{1} << (std::min(p.trunkForks - k - 1, p.generations - 1) - 1);
+    EXPECT_EQ(axes.size(), expected);
+    EXPECT_EQ(axes[0].points.size(), 13u);
+    for (const ASystemAxis& a : axes)
+        if (a.order >= 1) EXPECT_LE(a.points.size(), static_cast<size_t>(p.generations));
 }
 
 TEST(ASystemTree, ContractionRatiosAndBranchingAnglesHoldAtEveryFork) {

@@ -97,6 +97,40 @@ TEST(KuniiFell, ADominantTreeCarriesDeadKnotsBelowItsCrown) {
     EXPECT_GT(live, 0);
 }
 
+TEST(KuniiFell, ADeadLimbReachesTheCrownRadiusOfTheYearItDied) {
+    const Stand& stand = testStand();
+    uint32_t id = pickStandTree(stand, TreePick::Dominant);
+    const StandTree& tree = stand.trees[id];
+    Skeleton sk = fellStandTree(stand, id);
+    // Limb of every chain (the first-order chain it hangs from) and each limb's reach.
+    std::vector<uint32_t> limb(sk.chains().size(), 0);
+    std::vector<double> reach(sk.chains().size(), 0);
+    for (uint32_t c = 1; c < sk.chains().size(); ++c) {
+        const SkeletonChain& chain = sk.chain(c);
+        limb[c] = chain.order == 1 ? c : limb[static_cast<size_t>(chain.parentChain)];
+        Vec3 base = sk.start(sk.segment(sk.chain(limb[c]).firstSegment));
+        for (uint32_t i = 0; i < chain.segmentCount; ++i) {
+            Vec3 p = sk.end(sk.segment(chain.firstSegment + i));
+            reach[limb[c]] = std::max(reach[limb[c]], std::hypot(p.x - base.x, p.y - base.y));
+        }
+    }
+    int checked = 0;
+    for (uint32_t c = 1; c < sk.chains().size(); ++c) {
+        const SkeletonSegment& first = sk.segment(sk.chain(c).firstSegment);
+        if (sk.chain(c).order != 1 || !std::isfinite(first.deathTime)) continue;
+        int died = static_cast<int>(first.deathTime);
+        ASSERT_GE(died, 1);
+        // The crown base passed the limb that year, not before.
+        EXPECT_GE(tree.history[static_cast<size_t>(died - 1)].crownBase, sk.start(first).z);
+        const TreeYear& before =
+            died >= 2 ? tree.history[static_cast<size_t>(died - 2)] : tree.initial;
+        EXPECT_LT(before.crownBase, sk.start(first).z);
+        EXPECT_NEAR(reach[c], tree.history[static_cast<size_t>(died - 1)].crownRadius, 1e-9);
+        ++checked;
+    }
+    EXPECT_GT(checked, 3);
+}
+
 TEST(KuniiFell, FelledTreeSurvivesTheSkeletonFile) {
     const Stand& stand = testStand();
     Skeleton sk = fellStandTree(stand, pickStandTree(stand, TreePick::Suppressed));
