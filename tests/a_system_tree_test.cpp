@@ -37,7 +37,9 @@ TEST(ASystemTree, ALongerTrunkCarriesMoreLimbsOfBoundedDepth) {
     EXPECT_EQ(axes.size(), expected);
     EXPECT_EQ(axes[0].points.size(), 13u);
     for (const ASystemAxis& a : axes)
-        if (a.order >= 1) EXPECT_LE(a.points.size(), static_cast<size_t>(p.generations));
+        if (a.order >= 1) {
+            EXPECT_LE(a.points.size(), static_cast<size_t>(p.generations));
+        }
 }
 
 TEST(ASystemTree, ContractionRatiosAndBranchingAnglesHoldAtEveryFork) {
