@@ -254,6 +254,28 @@ double StandOptions::irradianceAt(double year) const {
     return schedule.back().irradiance;
 }
 
+StandOptions standPreset(const std::string& name) {
+    StandOptions o;
+    if (name == "tropical") return o;
+    if (name == "shade") {
+        o.irradiance = 0.3;
+        return o;
+    }
+    if (name == "cooling" || name == "warming") {
+        o.years = 120;
+        double start = name == "cooling" ? 1.0 : 0.25;
+        o.schedule = {{0, start}, {50, start}, {60, 0.35}};
+        o.irradiance = 0.35;
+        return o;
+    }
+    throw InputError("stand options", "preset",
+                     fmt::format("unknown preset \"{}\": expected one of tropical, shade, "
+                                 "cooling, warming",
+                                 name));
+}
+
+std::vector<std::string> standPresetNames() { return {"tropical", "shade", "cooling", "warming"}; }
+
 void validateStandOptions(const StandOptions& o) {
     auto finite = [](double v) { return std::isfinite(v); };
     require(o.trees >= 0 && o.trees <= 100000, "trees", "a count in 0..100000", o.trees);

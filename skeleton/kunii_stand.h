@@ -78,6 +78,16 @@ struct StandOptions {
     double irradianceAt(double year) const;
 };
 
+/// Named stand set-ups (the experiments of docs/stand-kunii.md):
+///   "tropical" - the defaults: full sun (I0 = 1), 100 years;
+///   "shade"    - I0 = 0.3 (a cool, dim climate: shade-tolerant species take over);
+///   "cooling"  - 50 years at I0 = 1, down to 0.35 by year 60, 120 years in all;
+///   "warming"  - 50 years at I0 = 0.25, up to 0.35 by year 60, 120 years in all
+///                (cooling and warming end at the same I0 with different species: hysteresis).
+/// Throws InputError for an unknown name.
+StandOptions standPreset(const std::string& name);
+std::vector<std::string> standPresetNames();
+
 /// Throws InputError naming the parameter when an option is out of range.
 void validateStandOptions(const StandOptions& options);
 

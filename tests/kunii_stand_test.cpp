@@ -157,6 +157,14 @@ TEST(KuniiStand, BadOptionsAreInputErrorsNamingTheParameter) {
     expectError(o, "plot_size");
 }
 
+TEST(KuniiStand, PresetsAreValidAndUnknownOnesAreErrors) {
+    for (const std::string& name : standPresetNames())
+        EXPECT_NO_THROW(validateStandOptions(standPreset(name))) << name;
+    EXPECT_EQ(standPreset("cooling").irradianceAt(119), standPreset("warming").irradianceAt(119));
+    EXPECT_GT(standPreset("cooling").irradianceAt(10), standPreset("warming").irradianceAt(10));
+    EXPECT_THROW(standPreset("boreal"), InputError);
+}
+
 TEST(KuniiStand, IrradianceScheduleInterpolates) {
     StandOptions o;
     o.schedule = {{10, 1.0}, {20, 0.5}};
