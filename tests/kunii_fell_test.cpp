@@ -87,6 +87,26 @@ TEST(KuniiFell, DominantAndSuppressedTreesMakeValidSkeletons) {
     expectValidFelledTree(stand, pickStandTree(stand, TreePick::Suppressed));
 }
 
+TEST(KuniiFell, EveryTreeThatGrewFellsIntoAValidSkeleton) {
+    // Living and dead, seedlings and canopy trees alike.
+    const Stand& stand = testStand();
+    int felled = 0;
+    for (const StandTree& tree : stand.trees) {
+        if (tree.history.empty()) {
+            EXPECT_THROW(fellStandTree(stand, tree.id), InputError);
+            continue;
+        }
+        Skeleton sk = fellStandTree(stand, tree.id);
+        for (const SkeletonSegment& s : sk.segments()) {
+            ASSERT_GE(length(sk.end(s) - sk.start(s)), 1e-6) << "tree " << tree.id;
+            ASSERT_GE(sk.node(s.to).birthTime, sk.node(s.from).birthTime) << "tree " << tree.id;
+        }
+        ASSERT_EQ(sk.ringWidths().size(), tree.history.size());
+        ++felled;
+    }
+    EXPECT_GT(felled, 100);
+}
+
 TEST(KuniiFell, ADominantTreeCarriesDeadKnotsBelowItsCrown) {
     const Stand& stand = testStand();
     Skeleton sk = fellStandTree(stand, pickStandTree(stand, TreePick::Dominant));
