@@ -32,6 +32,7 @@ struct CommonOptions {
     std::string output;
     int threads = 0;
     bool quiet = false;
+    std::string fellingTime;  ///< years, or "auto"; empty: the grain file's
 };
 
 void addCommon(CLI::App* cmd, CommonOptions& o) {
@@ -40,6 +41,10 @@ void addCommon(CLI::App* cmd, CommonOptions& o) {
     cmd->add_option("--grain", o.grain,
                     "Grain parameter JSON file (docs/grain-format.md); defaults if omitted");
     cmd->add_option("-o,--output", o.output, "Output file")->required();
+    cmd->add_option("--felling-time", o.fellingTime,
+                    "Years: the tree's age when felled (wood with T beyond it is outside the "
+                    "log), or 'auto' = the years of the skeleton's ring_widths; overrides the "
+                    "grain file's felling_time, 0 = never felled");
     cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
@@ -59,6 +64,20 @@ std::unique_ptr<LoadedWood> loadWood(const CommonOptions& o) {
     auto w = std::make_unique<LoadedWood>();
     w->skeleton = loadSkeletonFile(o.skeleton);
     w->grain = o.grain.empty() ? GrainParams{} : loadGrainFile(o.grain);
+    if (o.fellingTime == "auto") {
+        if (w->skeleton.ringWidths().empty())
+            throw InputError("command line", "--felling-time",
+                             "'auto' needs a skeleton with ring_widths (its recorded years); "
+                             "give the age in years instead");
+        w->grain.fellingTime = static_cast<double>(w->skeleton.ringWidths().size());
+    } else if (!o.fellingTime.empty()) {
+        char* end = nullptr;
+        double t = std::strtod(o.fellingTime.c_str(), &end);
+        if (*end != '\0' || !std::isfinite(t) || t < 0)
+            throw InputError("command line", "--felling-time",
+                             fmt::format("\"{}\": expected years >= 0 or 'auto'", o.fellingTime));
+        w->grain.fellingTime = t;
+    }
     w->index = std::make_unique<SkeletonIndex>(w->skeleton);
     w->field = std::make_unique<GrowthField>(*w->index, w->grain);
     w->shader = std::make_unique<WoodShader>(*w->field);

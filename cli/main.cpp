@@ -11,6 +11,7 @@
 #include "pov_command.h"
 #include "render_command.h"
 #include "tree_command.h"
+#include "tree_model_commands.h"
 #include "util/input_error.h"
 
 int main(int argc, char** argv) {
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
     nenrin::addRenderCommand(app);
     nenrin::addPovCommands(app);
     nenrin::addTreeCommands(app);
+    nenrin::addStandCommands(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -10,9 +10,11 @@
 #include "renderer/grid_writers.h"
 #include "renderer/tree_preview.h"
 #include "skeleton/gran1_import.h"
+#include "skeleton/measured_branches.h"
 #include "skeleton/qsm_import.h"
 #include "skeleton/skeleton_file.h"
 #include "skeleton/skeleton_writer.h"
+#include "tree_model_commands.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -57,9 +59,11 @@ std::string detectFormat(const std::string& input) {
         return "gran1";
     for (const char* ext : {".txt", ".csv", ".tsv", ".dat"})
         if (endsWith(input, ext)) return "qsm";
+    if (endsWith(input, ".json")) return "branches";
     throw InputError(input, "",
                      "cannot tell the format: expected a Gran_1 log (folder or *_pith.json), a "
-                     "TreeQSM cylinder list (.txt/.csv); or give --format");
+                     "TreeQSM cylinder list (.txt/.csv), a measured-branch file (.json); or give "
+                     "--format");
 }
 
 void runImport(const ImportOptions& o) {
@@ -110,9 +114,18 @@ void runImport(const ImportOptions& o) {
                        {"age", tree.age},
                        {"ring_width_m", tree.ringWidth}};
         skeleton = std::move(tree.skeleton);
+    } else if (format == "branches") {
+        MeasuredTree tree = loadMeasuredTree(o.input);
+        fmt::print("{}: {} measured branches, {} years at {:.3f} m/year\n", o.input,
+                   tree.chainOfBranch.size(), tree.age, tree.elongationSpeed);
+        info.description = "Hayashi measured-branch tree imported by nenrin tree import";
+        info.source = {{"model", "measured-branches"}, {"input", o.input}, {"age", tree.age}};
+        skeleton = std::move(tree.skeleton);
     } else {
         throw InputError("command line", "--format",
-                         fmt::format("unknown format \"{}\": expected auto, gran1 or qsm", format));
+                         fmt::format("unknown format \"{}\": expected auto, gran1, qsm or "
+                                     "branches",
+                                     format));
     }
     saveSkeletonFile(skeleton, info, o.output);
     fmt::print("wrote {} ({} chains, {} segments)\n", o.output, skeleton.chains().size(),
@@ -150,7 +163,8 @@ CLI::App* addTreeCommands(CLI::App& app) {
                     "(.txt/.csv)")
         ->required();
     imp->add_option("-o,--output", io->output, "Output skeleton file (.json)")->required();
-    imp->add_option("--format", io->format, "auto, gran1 or qsm")->default_val("auto");
+    imp->add_option("--format", io->format, "auto, gran1, qsm or branches (measured-branch JSON)")
+        ->default_val("auto");
     imp->add_option("--rings", io->rings, "Gran_1: rings at the butt (sets the ring width)")
         ->check(CLI::PositiveNumber)
         ->default_val(60);
@@ -189,6 +203,7 @@ CLI::App* addTreeCommands(CLI::App& app) {
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
     pre->callback([po] { runPreview(*po); });
+    addTreeModelCommands(*tree);
     return tree;
 }
 

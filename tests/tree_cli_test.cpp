@@ -88,3 +88,68 @@ TEST_F(TreeCliTest, UnknownFormatAndMissingFilesAreReported) {
 }
 
 }  // namespace
+
+namespace {
+
+class TreeModelCliTest : public CliTest {};
+
+TEST_F(TreeModelCliTest, EveryModelWritesALoadableSkeletonAndRepeatsForItsSeed) {
+    const std::vector<std::vector<std::string>> commands = {
+        {"tree", "hayashi", "--preset", "hinoki", "--years", "8"},
+        {"tree", "akagi", "--preset", "keyaki", "--years", "20"},
+        {"tree", "kanayama", "--preset", "zelkova", "--years", "6", "-q"},
+    };
+    for (const auto& base : commands) {
+        std::vector<std::string> a = base, b = base;
+        fs::path pa = out_ / ("a-" + base[1] + ".json"), pb = out_ / ("b-" + base[1] + ".json");
+        a.insert(a.end(), {"--seed", "4", "-o", pa.string()});
+        b.insert(b.end(), {"--seed", "4", "-o", pb.string()});
+        RunResult ra = run(a);
+        ASSERT_EQ(ra.exitCode, 0) << ra.err;
+        ASSERT_EQ(run(b).exitCode, 0);
+        EXPECT_EQ(readBytes(pa), readBytes(pb)) << base[1] << ": same seed, other bytes";
+        nlohmann::json j = nlohmann::json::parse(readText(pa));
+        EXPECT_EQ(j["source"]["model"], base[1]);
+        EXPECT_FALSE(j["branches"].empty()) << base[1];
+        // The file is a skeleton the bake takes.
+        RunResult bake = run({"bake", "slice", "--skeleton", pa.string(), "--plane", "cross",
+                              "--at", "0.3", "--res", "16x16", "--size", "0.2x0.2m", "-q", "-o",
+                              (out_ / ("x-" + base[1] + ".exr")).string()});
+        EXPECT_EQ(bake.exitCode, 0) << base[1] << ": " << bake.err;
+    }
+}
+
+TEST_F(TreeModelCliTest, StandFellsItsDominantAndSuppressedTrees) {
+    // Everything good goes to the input folder: the last, failing fell must leave out_ empty.
+    fs::path stand = in_ / "stand.json";
+    RunResult r = run({"stand", "kunii", "--trees", "40", "--years", "40", "--seed", "2", "-q",
+                       "-o", stand.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::vector<double> meanWidth;
+    for (const char* pick : {"dominant", "suppressed"}) {
+        fs::path tree = in_ / (std::string(pick) + ".json");
+        r = run({"stand", "fell", stand.string(), "--tree", pick, "-o", tree.string()});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        nlohmann::json j = nlohmann::json::parse(readText(tree));
+        double sum = 0;
+        for (double w : j["ring_widths"]) sum += w;
+        meanWidth.push_back(sum / j["ring_widths"].size());
+    }
+    EXPECT_GT(meanWidth[0], 1.5 * meanWidth[1]) << "the dominant tree's rings are not wider";
+    expectInputError(run({"stand", "fell", stand.string(), "--tree", "tallest", "-o",
+                          (out_ / "t.json").string()}),
+                     {"--tree", "dominant"});
+}
+
+TEST_F(TreeModelCliTest, UnknownPresetsAreNamed) {
+    expectInputError(
+        run({"tree", "hayashi", "--preset", "larch", "-o", (out_ / "t.json").string()}),
+        {"larch", "sugi"});
+    expectInputError(
+        run({"tree", "kanayama", "--preset", "oak", "-q", "-o", (out_ / "t.json").string()}),
+        {"oak", "cherry"});
+    expectInputError(run({"tree", "akagi", "--preset", "sakura", "-o", (out_ / "t.json").string()}),
+                     {"sakura", "keyaki"});
+}
+
+}  // namespace
