@@ -23,8 +23,14 @@ public:
     /// lens sample (lu, lv) in [0,1)^2. `differentialScale` shortens the differentials (the
     /// footprint of one of many samples per pixel is smaller than the pixel).
     CameraRay generate(double px, double py, double lu, double lv, double differentialScale) const;
+    /// The same ray without differentials.
+    Ray primary(double px, double py, double lu, double lv) const {
+        return through(px, py, lu, lv);
+    }
     /// The unit viewing axis (for the Z AOV: depth along it).
     const Vec3& forward() const { return forward_; }
+    /// A pinhole ignores the lens sample.
+    bool hasLens() const { return lensRadius_ > 0; }
 
 private:
     Ray through(double px, double py, double lu, double lv) const;

@@ -1,5 +1,7 @@
 #include "renderer/path_tracer.h"
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -19,6 +21,9 @@ namespace nenrin {
 namespace {
 
 constexpr int kTileSize = 16;
+/// A pixel whose shared wood evaluation is on a knot's edge (knot share between this and
+/// 1 - this) is shaded per sample.
+constexpr double kKnotRefinement = 0.02;
 constexpr uint32_t kSamplesPerPass = 64;
 /// Random dimensions: 0-3 camera (pixel jitter, lens), then kDimsPerBounce per bounce.
 constexpr uint64_t kLightDims = 2;
@@ -68,7 +73,9 @@ Vec3 offsetOrigin(const Vec3& p, const Vec3& ng, const Vec3& towards) {
 
 struct PathState {
     Ray ray;
-    Ray rayX, rayY;  ///< camera ray differentials (depth 0 only)
+    /// Film position of the camera sample (pixels): its ray differentials are made again
+    /// from it where a footprint is needed, instead of being carried by every path.
+    double filmX = 0, filmY = 0;
     Rgb throughput{1, 1, 1};
     Rgb radiance;
     uint32_t pixel = 0;  ///< index within the tile
@@ -120,6 +127,16 @@ private:
     void resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
                      const std::vector<uint64_t>& pixelIds);
     void shadeWood(std::vector<PathState>& paths, const std::vector<uint32_t>& woodPaths);
+    /// The camera ray of a path's sample, with its differentials.
+    CameraRay cameraRay(const PathState& path, uint64_t pixelId) const {
+        const bool lens = camera_.hasLens();
+        const uint64_t seed = scene_.settings.seed;
+        return camera_.generate(
+            path.filmX, path.filmY, lens ? randomAt(seed, pixelId, path.sample, 2) : 0,
+            lens ? randomAt(seed, pixelId, path.sample, 3) : 0, differentialScale_);
+    }
+    /// Fills groupResults_ (one per pixel) and groupStart_ for a camera batch of n entries.
+    void shadeCameraWood(const WoodShader& shader, size_t n);
     void shade(PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood, TileAovs& aovs);
 
     const Scene& scene_;
@@ -127,7 +144,11 @@ private:
     const Camera& camera_;
     const Light* env_;
     uint64_t rayCount_ = 0;
-    // Per-tile scratch.
+    // Scratch, reused by the tiles one thread renders (no allocation per tile).
+    std::vector<PathState> paths_;
+    std::vector<uint64_t> pixelIds_;
+    std::vector<double> rotations_;
+    std::vector<uint32_t> woodPathIds_, woodOrder_;
     std::vector<WoodSurfaceSample> woodResults_;
     std::vector<int32_t> woodSlot_;
     WoodScratch woodScratch_;
@@ -135,6 +156,18 @@ private:
     std::vector<SurfaceFootprint> woodFootprints_;
     std::vector<WoodSurfaceSample> woodBatch_;
     std::vector<WoodSample> woodPlain_;
+    // Camera hits shaded once per pixel and board (shadeCameraWood).
+    std::vector<uint32_t> groupPixel_, groupStart_;
+    std::vector<Vec3> groupPoints_;
+    std::vector<SurfaceFootprint> groupFootprints_;
+    std::vector<WoodSurfaceSample> groupResults_;
+    std::vector<uint32_t> batchPixel_;
+    std::vector<int32_t> refineEntries_;  ///< per batch entry: its quadrant evaluation, or -1
+    std::vector<int32_t> refineSlots_;
+    std::vector<Vec3> refinePoints_;
+    std::vector<SurfaceFootprint> refineFootprints_;
+    std::vector<WoodSurfaceSample> refineResults_;
+    double differentialScale_ = 1;
 };
 
 void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats) {
@@ -143,9 +176,13 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
     const size_t pixels = size_t(tw) * th;
     const uint32_t spp = static_cast<uint32_t>(settings.spp);
     const double differentialScale = std::max(0.125, 1 / std::sqrt(double(spp)));
+    differentialScale_ = differentialScale;
 
-    std::vector<uint64_t> pixelIds(pixels);
-    std::vector<double> rotations(2 * pixels);
+    rayCount_ = 0;
+    std::vector<uint64_t>& pixelIds = pixelIds_;
+    std::vector<double>& rotations = rotations_;
+    pixelIds.resize(pixels);
+    rotations.resize(2 * pixels);
     for (int j = 0; j < th; ++j) {
         for (int i = 0; i < tw; ++i) {
             uint32_t p = static_cast<uint32_t>(j * tw + i);
@@ -160,10 +197,12 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
     TileAovs aovs(pixels);
     // Samples go through in passes of at most kSamplesPerPass per pixel, which bounds memory
     // at any spp; each pixel still adds its samples in order, so sums are deterministic.
-    std::vector<PathState> paths;
+    std::vector<PathState>& paths = paths_;
     for (uint32_t s0 = 0; s0 < spp; s0 += kSamplesPerPass) {
         const uint32_t passSamples = std::min(spp - s0, kSamplesPerPass);
-        paths.assign(pixels * passSamples, PathState{});
+        // Only the fields a new camera path needs are reset: the state is large, and
+        // resetting all of it for every sample was a measurable share of a render.
+        paths.resize(pixels * passSamples);
         for (int j = 0; j < th; ++j) {
             for (int i = 0; i < tw; ++i) {
                 uint32_t p = static_cast<uint32_t>(j * tw + i);
@@ -171,18 +210,25 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
                 for (uint32_t k = 0; k < passSamples; ++k) {
                     uint32_t s = s0 + k;
                     PathState& path = paths[p * passSamples + k];
+                    path.throughput = {1, 1, 1};
+                    path.radiance = {};
+                    path.depth = 0;
+                    path.bsdfPdf = 0;
+                    path.alive = true;
+                    path.minRoughness = 0;
+                    path.glue = nullptr;
                     path.pixel = p;
                     path.sample = s;
                     double jx = rotations[2 * p] + s * 0.7548776662466927;
                     double jy = rotations[2 * p + 1] + s * 0.5698402909980532;
                     jx -= std::floor(jx);
                     jy -= std::floor(jy);
-                    CameraRay c = camera_.generate(
-                        x0 + i + jx, y0 + j + jy, randomAt(settings.seed, id, s, 2),
-                        randomAt(settings.seed, id, s, 3), differentialScale);
-                    path.ray = c.ray;
-                    path.rayX = c.rayX;
-                    path.rayY = c.rayY;
+                    path.filmX = x0 + i + jx;
+                    path.filmY = y0 + j + jy;
+                    const bool lens = camera_.hasLens();
+                    path.ray = camera_.primary(path.filmX, path.filmY,
+                                               lens ? randomAt(settings.seed, id, s, 2) : 0,
+                                               lens ? randomAt(settings.seed, id, s, 3) : 0);
                 }
             }
         }
@@ -249,7 +295,8 @@ void TileRenderer::traceCamera(std::vector<PathState>& paths) {
 /// Surface points of the hits: where in the tree (wood), which board, and the footprint.
 void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
                                const std::vector<uint64_t>& pixelIds) {
-    std::vector<uint32_t> woodPaths;
+    std::vector<uint32_t>& woodPaths = woodPathIds_;
+    woodPaths.clear();
     for (uint32_t i = 0; i < paths.size(); ++i) {
         PathState& path = paths[i];
         if (!path.alive || !path.hit.hit || path.hit.isLight) continue;
@@ -283,16 +330,20 @@ void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
 void TileRenderer::shadeWood(std::vector<PathState>& paths,
                              const std::vector<uint32_t>& woodPaths) {
     woodSlot_.assign(paths.size(), -1);
-    woodResults_.resize(woodPaths.size());
+    woodResults_.clear();
     // Coherent batches: by material, then board, then path order (pixel-major).
-    std::vector<uint32_t> order(woodPaths.size());
+    std::vector<uint32_t>& order = woodOrder_;
+    order.resize(woodPaths.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    auto before = [&](uint32_t a, uint32_t b) {
         const PathState& pa = paths[woodPaths[a]];
         const PathState& pb = paths[woodPaths[b]];
         if (pa.material != pb.material) return pa.material < pb.material;
         return pa.treeFromObject < pb.treeFromObject;
-    });
+    };
+    // Often one board fills the tile: then the order is already right.
+    if (!std::is_sorted(order.begin(), order.end(), before))
+        std::stable_sort(order.begin(), order.end(), before);
     size_t begin = 0;
     while (begin < order.size()) {
         const PathState& first = paths[woodPaths[order[begin]]];
@@ -309,25 +360,72 @@ void TileRenderer::shadeWood(std::vector<PathState>& paths,
         size_t n = end - begin;
         woodPoints_.resize(n);
         woodFootprints_.resize(camera ? n : 0);
+        batchPixel_.resize(n);
+        // A camera sample's footprint: where the neighbouring pixels' rays (scaled to the
+        // sample's share of the pixel) meet the hit's plane.
+        auto footprintOf = [&](size_t k) -> SurfaceFootprint {
+            const PathState& p = paths[woodPaths[order[begin + k]]];
+            const Vec3& n0 = p.hit.geometricNormal;
+            auto onPlane = [&](const Ray& r) {
+                double den = dot(n0, r.direction);
+                if (std::abs(den) < 1e-12) return p.hit.position;
+                double t = dot(n0, p.hit.position - r.origin) / den;
+                return r.origin + r.direction * t;
+            };
+            CameraRay c = cameraRay(p, pixelIds_[p.pixel]);
+            return {treeFromWorld.vector(onPlane(c.rayX) - p.hit.position),
+                    treeFromWorld.vector(onPlane(c.rayY) - p.hit.position)};
+        };
         for (size_t k = 0; k < n; ++k) {
             const PathState& p = paths[woodPaths[order[begin + k]]];
+            batchPixel_[k] = p.pixel;
             woodPoints_[k] = treeFromWorld.point(p.hit.position);
-            if (camera) {
-                // Ray differentials: where the neighbouring pixels' rays meet the hit's plane.
-                const Vec3& n0 = p.hit.geometricNormal;
-                auto onPlane = [&](const Ray& r) {
-                    double den = dot(n0, r.direction);
-                    if (std::abs(den) < 1e-12) return p.hit.position;
-                    double t = dot(n0, p.hit.position - r.origin) / den;
-                    return r.origin + r.direction * t;
-                };
-                woodFootprints_[k] = {treeFromWorld.vector(onPlane(p.rayX) - p.hit.position),
-                                      treeFromWorld.vector(onPlane(p.rayY) - p.hit.position)};
-            }
+            // Footprints for the first sample of each pixel (shadeCameraWood) and for samples
+            // near glue lines.
+            if (camera && (k == 0 || batchPixel_[k] != batchPixel_[k - 1] || p.glue))
+                woodFootprints_[k] = footprintOf(k);
         }
         woodBatch_.resize(n);
         if (camera) {
-            shader.evaluateSurface(woodPoints_, woodFootprints_, woodBatch_, woodScratch_);
+            shadeCameraWood(shader, n);
+            // Knots are not prefiltered: a knot's rim would alias if a whole pixel took one
+            // evaluation, so pixels on a knot's edge are shaded per quarter pixel: each sample
+            // takes the evaluation of its quadrant (centroid, half-pixel footprint).
+            refineEntries_.assign(n, -1);
+            refinePoints_.clear();
+            refineFootprints_.clear();
+            const double half = 0.5 / differentialScale_;
+            for (size_t g = 0; g + 1 < groupStart_.size(); ++g) {
+                const double knot = groupResults_[g].knot;
+                const uint32_t g0 = groupStart_[g], g1 = groupStart_[g + 1];
+                if (knot <= kKnotRefinement || knot >= 1 - kKnotRefinement || g1 - g0 < 2) continue;
+                int32_t slotOfQuadrant[4] = {-1, -1, -1, -1};
+                uint32_t count[4] = {0, 0, 0, 0};
+                for (uint32_t k = g0; k < g1; ++k) {
+                    const PathState& p = paths[woodPaths[order[begin + k]]];
+                    int q = (p.filmX - std::floor(p.filmX) >= 0.5) +
+                            2 * (p.filmY - std::floor(p.filmY) >= 0.5);
+                    if (slotOfQuadrant[q] < 0) {
+                        slotOfQuadrant[q] = static_cast<int32_t>(refinePoints_.size());
+                        refinePoints_.push_back({0, 0, 0});
+                        refineFootprints_.push_back(
+                            {woodFootprints_[g0].dpdx * half, woodFootprints_[g0].dpdy * half, 0});
+                    }
+                    Vec3& sum = refinePoints_[static_cast<size_t>(slotOfQuadrant[q])];
+                    sum = sum + woodPoints_[k];
+                    ++count[q];
+                    refineEntries_[k] = slotOfQuadrant[q];
+                }
+                for (int q = 0; q < 4; ++q)
+                    if (count[q] > 0) {
+                        Vec3& sum = refinePoints_[static_cast<size_t>(slotOfQuadrant[q])];
+                        sum = sum * (1.0 / count[q]);
+                    }
+            }
+            refineResults_.resize(refinePoints_.size());
+            if (!refinePoints_.empty())
+                shader.evaluateSurface(refinePoints_, refineFootprints_, refineResults_,
+                                       woodScratch_);
         } else {
             woodPlain_.resize(n);
             shader.evaluate(woodPoints_, woodPlain_, woodScratch_.growth, woodScratch_.samples);
@@ -352,17 +450,61 @@ void TileRenderer::shadeWood(std::vector<PathState>& paths,
                 p.glueCover = glueCoverage(p.glueDistance, p.glue->width, footprint);
             }
         }
-        for (size_t k = 0; k < n; ++k) {
-            uint32_t slot = order[begin + k];
-            WoodSurfaceSample w = woodBatch_[k];
-            // Directions back to world space for shading.
+        // Results in world space (directions back from tree space), one per camera pixel
+        // group or per indirect hit; each path points at its result.
+        auto keep = [&](WoodSurfaceSample w) {
             w.fibre = worldFromTree.vector(w.fibre);
             w.reliefGradient = worldFromTree.vector(w.reliefGradient);
-            woodResults_[slot] = w;
-            woodSlot_[woodPaths[slot]] = static_cast<int32_t>(slot);
+            woodResults_.push_back(w);
+            return static_cast<int32_t>(woodResults_.size() - 1);
+        };
+        if (camera) {
+            // Quadrant results first, so each is kept once.
+            refineSlots_.resize(refineResults_.size());
+            for (size_t r = 0; r < refineResults_.size(); ++r)
+                refineSlots_[r] = keep(refineResults_[r]);
+            for (size_t g = 0; g + 1 < groupStart_.size(); ++g) {
+                const uint32_t g0 = groupStart_[g], g1 = groupStart_[g + 1];
+                const bool refined = refineEntries_[g0] >= 0;
+                int32_t slot = refined ? -1 : keep(groupResults_[g]);
+                for (uint32_t k = g0; k < g1; ++k)
+                    woodSlot_[woodPaths[order[begin + k]]] =
+                        refined ? refineSlots_[static_cast<size_t>(refineEntries_[k])] : slot;
+            }
+        } else {
+            for (size_t k = 0; k < n; ++k)
+                woodSlot_[woodPaths[order[begin + k]]] = keep(woodBatch_[k]);
         }
         begin = end;
     }
+}
+
+/// The wood seen by camera samples is shaded once per pixel and board: at the mean of the
+/// samples' tree-space points, filtered over the whole pixel's footprint (the per-sample
+/// differentials are 1 / differentialScale_ shorter). The ring profile is prefiltered over
+/// that footprint, so this is the pixel's box-filtered wood, as the mean of the samples' own
+/// (smaller-footprint) evaluations would be, at 1/spp of the cost. Light, visibility and
+/// geometry stay sampled per sample. Batch entries of one pixel are adjacent (pixel-major).
+void TileRenderer::shadeCameraWood(const WoodShader& shader, size_t n) {
+    groupStart_.clear();
+    groupPoints_.clear();
+    groupFootprints_.clear();
+    const double widen = 1 / differentialScale_;
+    for (size_t k = 0; k < n; ++k) {
+        if (k == 0 || batchPixel_[k] != batchPixel_[k - 1]) {
+            groupStart_.push_back(static_cast<uint32_t>(k));
+            groupPoints_.push_back({0, 0, 0});
+            groupFootprints_.push_back(
+                {woodFootprints_[k].dpdx * widen, woodFootprints_[k].dpdy * widen, 0});
+        }
+        groupPoints_.back() = groupPoints_.back() + woodPoints_[k];
+    }
+    groupStart_.push_back(static_cast<uint32_t>(n));
+    const size_t groups = groupPoints_.size();
+    for (size_t g = 0; g < groups; ++g)
+        groupPoints_[g] = groupPoints_[g] * (1.0 / (groupStart_[g + 1] - groupStart_[g]));
+    groupResults_.resize(groups);
+    shader.evaluateSurface(groupPoints_, groupFootprints_, groupResults_, woodScratch_);
 }
 
 void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood,
@@ -555,13 +697,15 @@ Film renderScene(const Scene& scene, const RenderOptions& options, RenderStats& 
     const size_t tileCount = size_t(tilesX) * tilesY;
     std::vector<RenderStats> tileStats(tileCount);
     ProgressReporter progress(static_cast<long long>(tileCount), "Rendering", options.quiet);
+    // One renderer per thread: its buffers serve all the tiles the thread renders.
+    tbb::enumerable_thread_specific<TileRenderer> renderers(
+        [&] { return TileRenderer(scene, rays, camera); });
     parallelTiles(tileCount, options.threads, [&](size_t tile) {
         int tx = static_cast<int>(tile % tilesX), ty = static_cast<int>(tile / tilesX);
         int x0 = tx * kTileSize, y0 = ty * kTileSize;
         int x1 = std::min(settings.width, x0 + kTileSize);
         int y1 = std::min(settings.height, y0 + kTileSize);
-        TileRenderer renderer(scene, rays, camera);
-        renderer.render(x0, y0, x1, y1, film, tileStats[tile]);
+        renderers.local().render(x0, y0, x1, y1, film, tileStats[tile]);
         progress.advance();
     });
     progress.done();
