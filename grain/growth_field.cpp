@@ -278,7 +278,7 @@ GrowthSample GrowthField::evaluate(const Vec3& p) const {
 }
 
 void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSample> out,
-                                GrowthScratch& scratch) const {
+                                GrowthScratch& scratch, size_t stencil) const {
     // One gather from the index for the whole batch; then, chunk by chunk (consecutive runs of
     // kChunk points, which callers keep spatially compact), exact pruning to what can matter
     // for that chunk, and the per-point work.
@@ -286,7 +286,14 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     if (n == 0) return;
     auto& pts = scratch.points;
     pts.resize(n);
-    for (size_t i = 0; i < n; ++i) pts[i] = input[i] + swayDisplacement(input[i], sway_);
+    if (stencil <= 1 || n % stencil != 0) {
+        for (size_t i = 0; i < n; ++i) pts[i] = input[i] + swayDisplacement(input[i], sway_);
+    } else {
+        for (size_t i = 0; i < n; i += stencil) {
+            const Vec3 d = swayDisplacement(input[i], sway_);
+            for (size_t j = i; j < i + stencil; ++j) pts[j] = input[j] + d;
+        }
+    }
     const Box batch = boxOf(pts);
     const Vec3 centre = batch.centre();
     const double halfDiagonal = batch.halfDiagonal();

@@ -85,8 +85,12 @@ public:
     /// Evaluates a batch. Spatially coherent batches are much faster than scattered ones: the
     /// index is queried once per batch and candidates are pruned per run of 64 consecutive
     /// points, so order points in compact groups of 64 (8 x 8 tiles) within larger batches.
+    /// `stencil` > 1: points come in runs of that many around their first point (a finite
+    /// difference stencil a fraction of a ring wide), and the whole run is swayed by its first
+    /// point's displacement. Sway bends rings over decimetres, so this changes a gradient by
+    /// about 2 % (its slope) and spares the sway sums of the other points of the run.
     void evaluateBatch(std::span<const Vec3> points, std::span<GrowthSample> out,
-                       GrowthScratch& scratch) const;
+                       GrowthScratch& scratch, size_t stencil = 1) const;
 
     /// One path: the time through segment `segment` (with the eq. 4 joint blend of its chain
     /// neighbours). Exposed for tests.

@@ -137,7 +137,9 @@ private:
     }
     /// Fills groupResults_ (one per pixel) and groupStart_ for a camera batch of n entries.
     void shadeCameraWood(const WoodShader& shader, size_t n);
-    void shade(PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood, TileAovs& aovs);
+    void shade(uint32_t index, PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood,
+               TileAovs& aovs);
+    void traceShadows(std::vector<PathState>& paths, TileAovs& aovs);
 
     const Scene& scene_;
     const RayScene& rays_;
@@ -146,6 +148,15 @@ private:
     uint64_t rayCount_ = 0;
     // Scratch, reused by the tiles one thread renders (no allocation per tile).
     std::vector<PathState> paths_;
+    struct PendingShadow {
+        uint32_t path;
+        Ray ray;
+        double tMax;
+        Rgb contribution;  ///< throughput x light sample, added if unoccluded
+        bool blocked = false;
+    };
+    std::vector<PendingShadow> shadows_;  ///< this bounce's light samples, in path order
+    std::vector<uint8_t> finished_;       ///< paths that ended this bounce
     std::vector<uint64_t> pixelIds_;
     std::vector<double> rotations_;
     std::vector<uint32_t> woodPathIds_, woodOrder_;
@@ -319,11 +330,41 @@ void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
         if (scene_.materials[path.material].type == MaterialType::Wood) woodPaths.push_back(i);
     }
     shadeWood(paths, woodPaths);
+    shadows_.clear();
+    finished_.assign(paths.size(), 0);
     for (uint32_t i = 0; i < paths.size(); ++i) {
         PathState& path = paths[i];
         if (!path.alive) continue;
         const WoodSurfaceSample* wood = woodSlot_[i] >= 0 ? &woodResults_[woodSlot_[i]] : nullptr;
-        shade(path, pixelIds[path.pixel], wood, aovs);
+        shade(i, path, pixelIds[path.pixel], wood, aovs);
+    }
+    traceShadows(paths, aovs);
+}
+
+/// The light samples of this bounce, in 16-ray packets; then, in path order, each path gets its
+/// unoccluded contributions (in light order) and finished paths go into the film: the same
+/// sums in the same order as tracing each shadow ray where it was made.
+void TileRenderer::traceShadows(std::vector<PathState>& paths, TileAovs& aovs) {
+    Ray rays[16];
+    double tMax[16];
+    bool blocked[16];
+    for (size_t base = 0; base < shadows_.size(); base += 16) {
+        int count = static_cast<int>(std::min<size_t>(16, shadows_.size() - base));
+        for (int k = 0; k < count; ++k) {
+            rays[k] = shadows_[base + k].ray;
+            tMax[k] = shadows_[base + k].tMax;
+        }
+        rays_.occluded16(rays, tMax, count, blocked);
+        for (int k = 0; k < count; ++k) shadows_[base + k].blocked = blocked[k];
+    }
+    rayCount_ += shadows_.size();
+    size_t next = 0;
+    for (uint32_t i = 0; i < paths.size(); ++i) {
+        PathState& path = paths[i];
+        for (; next < shadows_.size() && shadows_[next].path == i; ++next)
+            if (!shadows_[next].blocked)
+                path.radiance = path.radiance + shadows_[next].contribution;
+        if (finished_[i]) aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
     }
 }
 
@@ -507,8 +548,8 @@ void TileRenderer::shadeCameraWood(const WoodShader& shader, size_t n) {
     shader.evaluateSurface(groupPoints_, groupFootprints_, groupResults_, woodScratch_);
 }
 
-void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood,
-                         TileAovs& aovs) {
+void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
+                         const WoodSurfaceSample* wood, TileAovs& aovs) {
     const RenderSettings& settings = scene_.settings;
     const uint64_t dim = 4 + path.depth * kDimsPerBounce;
     const uint64_t lightDims = 4;
@@ -538,8 +579,8 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
         }
         double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
         path.radiance = path.radiance + multiply(path.throughput, le) * w;
-        aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
         path.alive = false;
+        finished_[index] = 1;
         return;
     }
 
@@ -644,14 +685,13 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
             Rgb f = bsdf.evaluate(woLocal, wiLocal);
             if (isBlack(f) || isBlack(ls.radiance)) continue;
             Ray shadow{offsetOrigin(path.hit.position, ng, ls.direction), ls.direction};
-            ++rayCount_;
             double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
-            if (rays_.occluded(shadow, tMax)) continue;
             // MIS only if BSDF sampling can also find this light (not at the last vertex).
             double w =
                 ls.delta || !continues ? 1 : powerHeuristic(ls.pdf, bsdf.pdf(woLocal, wiLocal));
             Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * w / ls.pdf);
-            path.radiance = path.radiance + multiply(path.throughput, contribution);
+            // Added by traceShadows if nothing blocks the light.
+            shadows_.push_back({index, shadow, tMax, multiply(path.throughput, contribution)});
         }
     }
 
@@ -672,8 +712,8 @@ void TileRenderer::shade(PathState& path, uint64_t pixelId, const WoodSurfaceSam
         }
     }
     if (!more || isBlack(path.throughput)) {
-        aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
         path.alive = false;
+        finished_[index] = 1;
         return;
     }
     path.bsdfPdf = bs.pdf;

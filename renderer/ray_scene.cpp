@@ -219,6 +219,31 @@ void RayScene::intersect16(const Ray* rays, int count, SurfaceHit* hits) const {
     }
 }
 
+void RayScene::occluded16(const Ray* rays, const double* tMax, int count, bool* occluded) const {
+    alignas(64) int valid[16];
+    alignas(64) RTCRay16 r;
+    for (int i = 0; i < 16; ++i) {
+        valid[i] = i < count ? -1 : 0;
+        const Ray& ray = rays[i < count ? i : 0];
+        r.org_x[i] = float(ray.origin.x);
+        r.org_y[i] = float(ray.origin.y);
+        r.org_z[i] = float(ray.origin.z);
+        r.dir_x[i] = float(ray.direction.x);
+        r.dir_y[i] = float(ray.direction.y);
+        r.dir_z[i] = float(ray.direction.z);
+        r.tnear[i] = 0;
+        r.tfar[i] = float(tMax[i < count ? i : 0]);
+        r.mask[i] = ~0u;
+        r.time[i] = 0;
+        r.flags[i] = 0;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded16(valid, impl_->scene, &context, &r);
+    for (int i = 0; i < count; ++i) occluded[i] = r.tfar[i] < 0;
+}
+
 bool RayScene::occluded(const Ray& ray, double tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

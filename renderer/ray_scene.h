@@ -35,6 +35,9 @@ public:
     void intersect16(const Ray* rays, int count, SurfaceHit* hits) const;
     /// True if anything lies on the ray between 0 and tMax.
     bool occluded(const Ray& ray, double tMax) const;
+    /// Up to 16 shadow rays at once (Embree packets; shadow rays of neighbouring samples
+    /// towards one light are coherent). occluded[i] answers ray i.
+    void occluded16(const Ray* rays, const double* tMax, int count, bool* occluded) const;
 
     /// Number of triangles (for the summary).
     size_t triangleCount() const;

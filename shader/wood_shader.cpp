@@ -60,7 +60,7 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         scratch.points[4 * i + 3] = p + Vec3{0, 0, h};
     }
     scratch.samples.resize(4 * n);
-    field_->evaluateBatch(scratch.points, scratch.samples, scratch.growth);
+    field_->evaluateBatch(scratch.points, scratch.samples, scratch.growth, 4);
 
     const ColourParams& colour = field_->params().colour;
     const double felled = field_->params().fellingTime;
