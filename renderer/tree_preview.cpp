@@ -123,7 +123,7 @@ TreePreview renderTreePreview(const Skeleton& sk, const TreePreviewOptions& o) {
     out.width = o.width, out.height = o.height;
     out.segments = sk.segments().size();
 
-    // Frame: the bounding sphere of the nodes seen from (azimuth, elevation).
+    // Frame: the nodes' bounding box seen from (azimuth, elevation).
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     double lastBirth = 0;
     bool anyRadius = false;
@@ -136,10 +136,14 @@ TreePreview renderTreePreview(const Skeleton& sk, const TreePreviewOptions& o) {
         anyRadius = anyRadius || n.radius > 0;
     }
     Vec3 centre = (lo + hi) * 0.5;
-    double sphere = std::max(0.5 * length(hi - lo), 0.05);
     double aspect = double(o.width) / o.height;
-    double halfFov = 0.5 * std::min(kFovY, 2 * std::atan(std::tan(0.5 * kFovY) * aspect));
-    double distance = 1.08 * sphere / std::sin(halfFov);
+    // Fit the tree's height and width (trees are tall: a bounding sphere would leave most of
+    // a portrait frame empty), standing back by the crown's half width.
+    double halfHeight = std::max(0.5 * (hi.z - lo.z), 0.05);
+    double halfWidth = std::max(0.5 * std::max(hi.x - lo.x, hi.y - lo.y), 0.05);
+    double tanY = std::tan(0.5 * kFovY), tanX = tanY * aspect;
+    double distance = 1.12 * std::max(halfHeight / tanY, halfWidth / tanX) + halfWidth;
+    const double ground = std::max(1.6 * halfWidth, 0.6 * halfHeight);  // radius of the disc
     Vec3 toCamera{std::cos(o.elevation * kDegree) * std::cos(o.azimuth * kDegree),
                   std::cos(o.elevation * kDegree) * std::sin(o.azimuth * kDegree),
                   std::sin(o.elevation * kDegree)};
@@ -163,7 +167,7 @@ TreePreview renderTreePreview(const Skeleton& sk, const TreePreviewOptions& o) {
         double minimum = 0.5 * pixelAngle * length(n.position - eye);
         radii[i] = float(std::max(r, minimum));
     }
-    CurveScene scene(sk, radii, {centre.x, centre.y, lo.z}, 1.2 * sphere);
+    CurveScene scene(sk, radii, {centre.x, centre.y, lo.z}, ground);
     Vec3 sun = normalize(
         Vec3{std::cos((o.azimuth + 70) * kDegree), std::sin((o.azimuth + 70) * kDegree), 1.1});
 
@@ -192,7 +196,7 @@ TreePreview renderTreePreview(const Skeleton& sk, const TreePreviewOptions& o) {
                     Rgb albedo = kGround;
                     if (rh.hit.geomID == kGroundId) {
                         // Fade the ground square into the sky: a disc around the tree.
-                        double r = length(Vec3{p.x - centre.x, p.y - centre.y, 0}) / (1.2 * sphere);
+                        double r = length(Vec3{p.x - centre.x, p.y - centre.y, 0}) / ground;
                         if (r > 1) {
                             c = sky(d);
                             sum = {sum.r + c.r, sum.g + c.g, sum.b + c.b};
