@@ -48,6 +48,7 @@ double powerHeuristic(double a, double b) {
 /// An orthonormal frame around a unit normal.
 struct Frame {
     Vec3 s, t, n;
+    Frame() = default;
     explicit Frame(const Vec3& normal) : n(normal) {
         s = anyPerpendicular(n);
         t = cross(n, s);
@@ -156,7 +157,15 @@ private:
         bool blocked = false;
     };
     std::vector<PendingShadow> shadows_;  ///< this bounce's light samples, in path order
-    std::vector<uint8_t> finished_;       ///< paths that ended this bounce
+    /// The shading state shared by the camera samples of one pixel and board face (shade).
+    struct SharedSurface {
+        const WoodSurfaceSample* wood = nullptr;
+        Vec3 ng, ns;
+        SurfaceBsdf bsdf;
+        Frame frame;
+        std::vector<Rgb> lightValue;  ///< BSDF value towards each distant light; r < 0: unknown
+    } shared_;
+    std::vector<uint8_t> finished_;  ///< paths that ended this bounce
     std::vector<uint64_t> pixelIds_;
     std::vector<double> rotations_;
     std::vector<uint32_t> woodPathIds_, woodOrder_;
@@ -330,6 +339,7 @@ void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
         if (scene_.materials[path.material].type == MaterialType::Wood) woodPaths.push_back(i);
     }
     shadeWood(paths, woodPaths);
+    shared_.wood = nullptr;  // results of earlier bounces may reuse these addresses
     shadows_.clear();
     finished_.assign(paths.size(), 0);
     for (uint32_t i = 0; i < paths.size(); ++i) {
@@ -591,70 +601,92 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
     if (dot(ng, wo) < 0) ng = -ng;
     if (dot(ns, ng) < 0) ns = -ns;
 
+    // Camera samples of one pixel that see the same board face share its shading state: the
+    // wood was evaluated once for them (shadeCameraWood), so the layered BSDF, the bumped normal
+    // and the frame are the same; so is the BSDF's value towards a distant light, up to the
+    // pixel's spread of view directions. Each sample keeps its own light sample and shadow ray.
+    const bool shareable = camera && material.type == MaterialType::Wood && wood != nullptr &&
+                           !(path.glue && path.glueCover > 0);
+    const bool reuse = shareable && shared_.wood == wood && shared_.ng == ng;
     SurfaceBsdf bsdf;
-    Vec3 texturedFibre;
-    if (material.type == MaterialType::Wood) {
-        const Finish& finish = material.wood->finish();
-        if (wood->coverage > 0) {
-            bsdf.base = wood->albedo;
-            bsdf.fibreStrength = finish.fibreStrength;
-            bsdf.fibreWidth = finish.fibreWidth;
-        } else {
-            bsdf.base = kBarkAlbedo;  // past the bark of the felled log
-        }
-        if (path.glue && path.glueCover > 0) {
-            const double* g = path.glue->colour;
-            bsdf.base = mix(bsdf.base, Rgb{g[0], g[1], g[2]}, path.glueCover);
-            bsdf.fibreStrength *= 1 - path.glueCover;
-        }
-        bsdf.coatWeight = finish.coatWeight;
-        bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
-        bsdf.ior = finish.coatIor;
-        // Relief: tilt the normal against the height gradient's part along the surface.
-        Vec3 g = wood->reliefGradient;
-        Vec3 bumped = normalize(ns - (g - ns * dot(g, ns)));
-        if (dot(bumped, wo) > 0) ns = bumped;
-    } else if (material.type == MaterialType::Textured) {
-        // Baked wood maps: the same layered surface, its inputs read from the textures in the
-        // tangent frame of the uv layout (tangent +u, bitangent +v).
-        const Finish& finish = material.finish;
-        Vec3 c = material.baseColourMap->lookup3(path.hit.u, path.hit.v);
-        bsdf.base = {c.x, c.y, c.z};
-        bsdf.coatWeight = finish.coatWeight;
-        bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
-        bsdf.ior = finish.coatIor;
-        Vec3 tangent = normalize(path.hit.dpdu - ns * dot(ns, path.hit.dpdu));
-        Vec3 bitangent = cross(ns, tangent);
-        if (dot(bitangent, path.hit.dpdv) < 0) bitangent = -bitangent;
-        auto fromTangentSpace = [&](const ImageTexture& map) {
-            Vec3 e = map.lookup3(path.hit.u, path.hit.v) * 2 - Vec3{1, 1, 1};
-            return tangent * e.x + bitangent * e.y + ns * e.z;
-        };
-        if (lengthSquared(tangent) > 0) {
-            if (material.normalMap) {
-                Vec3 bumped = normalize(fromTangentSpace(*material.normalMap));
-                if (dot(bumped, wo) > 0) ns = bumped;
-            }
-            if (material.fibreMap) {
-                texturedFibre = normalize(fromTangentSpace(*material.fibreMap));
+    Frame frame;
+    if (reuse) {
+        bsdf = shared_.bsdf;
+        ns = shared_.ns;
+        frame = shared_.frame;
+    } else {
+        Vec3 texturedFibre;
+        if (material.type == MaterialType::Wood) {
+            const Finish& finish = material.wood->finish();
+            if (wood->coverage > 0) {
+                bsdf.base = wood->albedo;
                 bsdf.fibreStrength = finish.fibreStrength;
                 bsdf.fibreWidth = finish.fibreWidth;
+            } else {
+                bsdf.base = kBarkAlbedo;  // past the bark of the felled log
+            }
+            if (path.glue && path.glueCover > 0) {
+                const double* g = path.glue->colour;
+                bsdf.base = mix(bsdf.base, Rgb{g[0], g[1], g[2]}, path.glueCover);
+                bsdf.fibreStrength *= 1 - path.glueCover;
+            }
+            bsdf.coatWeight = finish.coatWeight;
+            bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
+            bsdf.ior = finish.coatIor;
+            // Relief: tilt the normal against the height gradient's part along the surface.
+            Vec3 g = wood->reliefGradient;
+            Vec3 bumped = normalize(ns - (g - ns * dot(g, ns)));
+            if (dot(bumped, wo) > 0) ns = bumped;
+        } else if (material.type == MaterialType::Textured) {
+            // Baked wood maps: the same layered surface, its inputs read from the textures in the
+            // tangent frame of the uv layout (tangent +u, bitangent +v).
+            const Finish& finish = material.finish;
+            Vec3 c = material.baseColourMap->lookup3(path.hit.u, path.hit.v);
+            bsdf.base = {c.x, c.y, c.z};
+            bsdf.coatWeight = finish.coatWeight;
+            bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
+            bsdf.ior = finish.coatIor;
+            Vec3 tangent = normalize(path.hit.dpdu - ns * dot(ns, path.hit.dpdu));
+            Vec3 bitangent = cross(ns, tangent);
+            if (dot(bitangent, path.hit.dpdv) < 0) bitangent = -bitangent;
+            auto fromTangentSpace = [&](const ImageTexture& map) {
+                Vec3 e = map.lookup3(path.hit.u, path.hit.v) * 2 - Vec3{1, 1, 1};
+                return tangent * e.x + bitangent * e.y + ns * e.z;
+            };
+            if (lengthSquared(tangent) > 0) {
+                if (material.normalMap) {
+                    Vec3 bumped = normalize(fromTangentSpace(*material.normalMap));
+                    if (dot(bumped, wo) > 0) ns = bumped;
+                }
+                if (material.fibreMap) {
+                    texturedFibre = normalize(fromTangentSpace(*material.fibreMap));
+                    bsdf.fibreStrength = finish.fibreStrength;
+                    bsdf.fibreWidth = finish.fibreWidth;
+                }
+            }
+        } else {
+            bsdf.base = material.colour;
+            if (material.type == MaterialType::Glossy) {
+                bsdf.coatWeight = 1;
+                bsdf.coatAlpha = std::max(material.roughness, path.minRoughness);
+            } else if (material.type == MaterialType::Metal) {
+                bsdf.metal = true;
+                bsdf.metalF0 = material.colour;
+                bsdf.metalAlpha = std::max(material.roughness, path.minRoughness);
             }
         }
-    } else {
-        bsdf.base = material.colour;
-        if (material.type == MaterialType::Glossy) {
-            bsdf.coatWeight = 1;
-            bsdf.coatAlpha = std::max(material.roughness, path.minRoughness);
-        } else if (material.type == MaterialType::Metal) {
-            bsdf.metal = true;
-            bsdf.metalF0 = material.colour;
-            bsdf.metalAlpha = std::max(material.roughness, path.minRoughness);
+        frame = Frame(ns);
+        if (wood && lengthSquared(wood->fibre) > 0) bsdf.fibre = frame.toLocal(wood->fibre);
+        if (lengthSquared(texturedFibre) > 0) bsdf.fibre = frame.toLocal(texturedFibre);
+        if (shareable) {
+            shared_.wood = wood;
+            shared_.ng = ng;
+            shared_.ns = ns;
+            shared_.bsdf = bsdf;
+            shared_.frame = frame;
+            shared_.lightValue.assign(scene_.lights.size(), Rgb{-1, -1, -1});
         }
     }
-    Frame frame(ns);
-    if (wood && lengthSquared(wood->fibre) > 0) bsdf.fibre = frame.toLocal(wood->fibre);
-    if (lengthSquared(texturedFibre) > 0) bsdf.fibre = frame.toLocal(texturedFibre);
     const Vec3 woLocal = frame.toLocal(wo);
 
     if (camera) {
@@ -682,7 +714,16 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
                 dot(ls.direction, ng) <= 0)
                 continue;
             Vec3 wiLocal = frame.toLocal(ls.direction);
-            Rgb f = bsdf.evaluate(woLocal, wiLocal);
+            // Shared only towards distant lights, whose direction is the same for every
+            // sample; other lights are sampled per sample, and their pdf goes with their own f.
+            const bool shareLight = shareable && light.type == LightType::Distant;
+            Rgb f;
+            if (shareLight && shared_.lightValue[li].r >= 0) {
+                f = shared_.lightValue[li];
+            } else {
+                f = bsdf.evaluate(woLocal, wiLocal);
+                if (shareLight) shared_.lightValue[li] = f;
+            }
             if (isBlack(f) || isBlack(ls.radiance)) continue;
             Ray shadow{offsetOrigin(path.hit.position, ng, ls.direction), ls.direction};
             double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
