@@ -72,7 +72,6 @@ void runHayashi(const CommonTreeOptions& o, int maxOrder) {
     h.seed = static_cast<uint64_t>(o.seed);
     if (o.years > 0) h.years = o.years;
     h.maxOrder = maxOrder;
-    validateHayashiOptions(h);
     auto t0 = std::chrono::steady_clock::now();
     HayashiTree tree = growHayashiConifer(h);
     fmt::print(
@@ -108,11 +107,10 @@ void runKanayama(const CommonTreeOptions& o, int removeLeaderAt) {
     checkOutputName(o.output, {".json"});
     KanayamaOptions k =
         o.params.empty() ? kanayamaPreset(o.preset) : readKanayamaOptionsFile(o.params);
-    if (o.params.empty()) k.preset = o.preset;
     k.seed = static_cast<uint64_t>(o.seed);
     if (o.years > 0) k.years = o.years;
     if (removeLeaderAt >= 0) k.removeLeaderAtYear = removeLeaderAt;
-    validateKanayamaOptions(k);
+    validateKanayamaOptions(k);  // before the progress line starts
     auto t0 = std::chrono::steady_clock::now();
     ProgressReporter progress(k.years, "Growing " + k.preset, o.quiet);
     KanayamaTree tree = growKanayamaTree(k, [&](int, int) { progress.advance(); });
@@ -201,7 +199,7 @@ void runStand(const StandCliOptions& o) {
         s.irradiance = o.irradiance;
         s.schedule.clear();
     }
-    validateStandOptions(s);
+    validateStandOptions(s);  // before the progress line starts
     auto t0 = std::chrono::steady_clock::now();
     ProgressReporter progress(s.years, "Growing the stand", o.quiet);
     Stand stand = simulateStand(s, [&](int, int) { progress.advance(); });

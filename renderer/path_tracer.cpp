@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 #include "renderer/camera.h"
 #include "renderer/lights.h"
@@ -130,11 +131,14 @@ private:
     void shadeWood(std::vector<PathState>& paths, const std::vector<uint32_t>& woodPaths);
     /// The camera ray of a path's sample, with its differentials.
     CameraRay cameraRay(const PathState& path, uint64_t pixelId) const {
-        const bool lens = camera_.hasLens();
+        auto [lu, lv] = lensSample(path, pixelId);
+        return camera_.generate(path.filmX, path.filmY, lu, lv, differentialScale_);
+    }
+    /// The sample's point on the lens (random dimensions 2 and 3; a pinhole needs none).
+    std::pair<double, double> lensSample(const PathState& path, uint64_t pixelId) const {
+        if (!camera_.hasLens()) return {0, 0};
         const uint64_t seed = scene_.settings.seed;
-        return camera_.generate(
-            path.filmX, path.filmY, lens ? randomAt(seed, pixelId, path.sample, 2) : 0,
-            lens ? randomAt(seed, pixelId, path.sample, 3) : 0, differentialScale_);
+        return {randomAt(seed, pixelId, path.sample, 2), randomAt(seed, pixelId, path.sample, 3)};
     }
     /// Fills groupResults_ (one per pixel) and groupStart_ for a camera batch of n entries.
     void shadeCameraWood(const WoodShader& shader, size_t n);
@@ -245,10 +249,8 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
                     jy -= std::floor(jy);
                     path.filmX = x0 + i + jx;
                     path.filmY = y0 + j + jy;
-                    const bool lens = camera_.hasLens();
-                    path.ray = camera_.primary(path.filmX, path.filmY,
-                                               lens ? randomAt(settings.seed, id, s, 2) : 0,
-                                               lens ? randomAt(settings.seed, id, s, 3) : 0);
+                    auto [lu, lv] = lensSample(path, id);
+                    path.ray = camera_.primary(path.filmX, path.filmY, lu, lv);
                 }
             }
         }

@@ -45,16 +45,21 @@ std::vector<std::vector<double>> readTable(const std::string& path, size_t colum
 struct Pith {
     std::vector<Vec3> points;  // m, tree space (base of the pith at x = y = 0)
 
+    struct Place {
+        uint32_t segment;
+        double t;  ///< 0..1 along the segment
+        Vec3 point;
+    };
     /// The trunk segment containing height z (m) and the pith point there.
-    std::pair<uint32_t, Vec3> at(double z) const {
+    Place at(double z) const {
         for (size_t i = 0; i + 1 < points.size(); ++i) {
             double z0 = points[i].z, z1 = points[i + 1].z;
             if (z <= z1 || i + 2 == points.size()) {
                 double t = std::clamp((z - z0) / (z1 - z0), 0.0, 1.0);
-                return {static_cast<uint32_t>(i), lerp(points[i], points[i + 1], t)};
+                return {static_cast<uint32_t>(i), t, lerp(points[i], points[i + 1], t)};
             }
         }
-        return {0, points[0]};
+        return {0, 0, points[0]};
     }
 };
 
@@ -142,14 +147,10 @@ Gran1Log importGran1(const std::string& prefix, const Gran1Options& o) {
             throw InputError(knotsPath, fmt::format("[{}][2]", k),
                              fmt::format("the knot starts at z = {} mm, off the pith ({} … {} mm)",
                                          C, base.z, pithRows.back()[2]));
-        auto [segment, origin] = pith.at(startZ);
-        double t0 = births[segment] +
-                    (births[segment + 1] - births[segment]) *
-                        std::clamp((startZ - pith.points[segment].z) /
-                                       (pith.points[segment + 1].z - pith.points[segment].z),
-                                   0.0, 1.0);
+        auto [segment, t, origin] = pith.at(startZ);
+        double t0 = births[segment] + (births[segment + 1] - births[segment]) * t;
         std::vector<Vec3> points{origin};
-        std::vector<double> knotBirths{t0}, knotRadii{0};
+        std::vector<double> knotBirths{t0};
         int steps = std::max(2, static_cast<int>(std::ceil(H / kKnotStepMm)));
         for (int s = 1; s <= steps; ++s) {
             double r = H * s / steps;
@@ -158,16 +159,16 @@ Gran1Log importGran1(const std::string& prefix, const Gran1Options& o) {
             p.z = (z - base.z) * kMm;
             points.push_back(p);
             knotBirths.push_back(t0 + r * kMm / o.branchGrowth);
-            // A knot's radius: what the branch had grown to by the stem's felling, or death.
-            knotRadii.push_back(0);
         }
         // The stem at this height reached the knot's death distance I after I / ring width
         // years; then the branch died and the stem grew over it.
         double deathTime = t0 + I * kMm / log.ringWidth;
         ChainProperties props{o.knotGamma, I >= H ? kNeverDies : deathTime, o.diebackExponent};
+        // A knot's radius: what the branch had grown to by the stem's felling, or its death.
         double lifeEnd = std::min(deathTime, log.fellingAge);
-        for (size_t i = 0; i < points.size(); ++i)
-            knotRadii[i] = std::max(0.0, (lifeEnd - knotBirths[i]) * log.ringWidth * o.knotGamma);
+        std::vector<double> knotRadii;
+        for (double birth : knotBirths)
+            knotRadii.push_back(std::max(0.0, (lifeEnd - birth) * log.ringWidth * o.knotGamma));
         log.skeleton.addBranch(segment, points, knotBirths, props, knotRadii);
         ++log.knots;
     }

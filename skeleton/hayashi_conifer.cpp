@@ -25,6 +25,11 @@ constexpr double kMergeHeight = 2e-6;
 constexpr double kWinterStep = 1e-3;
 /// Extra trunk nodes at most this far apart (birth time is nonlinear in height).
 constexpr double kTrunkGrid = 0.25;
+/// A multiplicative scatter about 1 with relative sd `v` (0: none), cut at 2.5 sd and at 0.1.
+double scatterFactor(SplitMix& rng, double v) {
+    return v > 0 ? drawTruncatedNormal(rng, 1, v, std::max(0.1, 1 - 2.5 * v), 1 + 2.5 * v) : 1.0;
+}
+
 constexpr double kTrunkTipRadius = 0.002;
 constexpr double kBranchTipRadius = 0.0005;
 
@@ -75,10 +80,7 @@ void Generator::growTrunkHeights() {
     SplitMix rng(hashCombine(o_.seed, kTrunkStream));
     std::vector<double> h{0};
     for (int y = 0; y < o_.years; ++y) {
-        double v = o_.heightGrowthVariation;
-        double factor =
-            v > 0 ? drawTruncatedNormal(rng, 1, v, std::max(0.1, 1 - 2.5 * v), 1 + 2.5 * v) : 1.0;
-        h.push_back(h.back() + o_.heightGrowth * factor);
+        h.push_back(h.back() + o_.heightGrowth * scatterFactor(rng, o_.heightGrowthVariation));
     }
     clock_ = SeasonalHeightGrowth(h, o_.growingSeason, o_.seasonShape);
     tree_.yearStartHeights = h;
@@ -179,10 +181,7 @@ void Generator::buildTrunk() {
 void Generator::addFirstOrder(HayashiBranchRecord& r, uint32_t parentSegment, size_t index) {
     uint64_t key = hashCombine(hashCombine(o_.seed, kBranchStream), index);
     SplitMix rng(key);
-    double v = o_.branchLengthVariation;
-    double lengthFactor =
-        v > 0 ? drawTruncatedNormal(rng, 1, v, std::max(0.1, 1 - 2.5 * v), 1 + 2.5 * v) : 1.0;
-    double a = o_.crownCoefficient * lengthFactor;
+    double a = o_.crownCoefficient * scatterFactor(rng, o_.branchLengthVariation);
     double elLo = std::max(-89 * HayashiOptions::kDegree, o_.elevation - 2.5 * o_.elevationSd);
     double elHi = std::min(89 * HayashiOptions::kDegree, o_.elevation + 2.5 * o_.elevationSd);
     r.elevation = o_.elevationSd > 0
