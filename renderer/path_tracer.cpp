@@ -181,7 +181,7 @@ private:
     std::vector<WoodSurfaceSample> woodBatch_;
     std::vector<WoodSample> woodPlain_;
     // Camera hits shaded once per pixel and board (shadeCameraWood).
-    std::vector<uint32_t> groupPixel_, groupStart_;
+    std::vector<uint32_t> groupStart_;
     std::vector<Vec3> groupPoints_;
     std::vector<SurfaceFootprint> groupFootprints_;
     std::vector<WoodSurfaceSample> groupResults_;
@@ -199,8 +199,7 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
     const int tw = x1 - x0, th = y1 - y0;
     const size_t pixels = size_t(tw) * th;
     const uint32_t spp = static_cast<uint32_t>(settings.spp);
-    const double differentialScale = std::max(0.125, 1 / std::sqrt(double(spp)));
-    differentialScale_ = differentialScale;
+    differentialScale_ = std::max(0.125, 1 / std::sqrt(double(spp)));
 
     rayCount_ = 0;
     std::vector<uint64_t>& pixelIds = pixelIds_;
