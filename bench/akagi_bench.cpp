@@ -2,7 +2,7 @@
 // samples, the paper's), one posterior-predictive draw, and generating one tree.
 #include <benchmark/benchmark.h>
 
-#include "skeleton/akagi_model.h"
+#include "skeleton/sources/akagi/akagi_model.h"
 
 namespace {
 

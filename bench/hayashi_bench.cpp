@@ -2,7 +2,7 @@
 // included) must stay under a second; the counters give the tree's size.
 #include <benchmark/benchmark.h>
 
-#include "skeleton/hayashi_conifer.h"
+#include "skeleton/sources/hayashi/hayashi_conifer.h"
 
 namespace {
 

@@ -2,8 +2,8 @@
 // O(n^2) projection of every sphere onto the dome) and whole simulations.
 #include <benchmark/benchmark.h>
 
-#include "skeleton/kanayama_growth.h"
-#include "skeleton/kanayama_light.h"
+#include "skeleton/sources/kanayama/kanayama_growth.h"
+#include "skeleton/sources/kanayama/kanayama_light.h"
 #include "util/hash.h"
 
 namespace {

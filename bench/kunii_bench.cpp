@@ -1,8 +1,8 @@
 // Im, Shinagawa & Kunii's interacting-tree stand: simulation and felling speed.
 #include <benchmark/benchmark.h>
 
-#include "skeleton/kunii_fell.h"
-#include "skeleton/kunii_stand.h"
+#include "skeleton/sources/kunii/kunii_fell.h"
+#include "skeleton/sources/kunii/kunii_stand.h"
 
 namespace {
 

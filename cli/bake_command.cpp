@@ -8,10 +8,10 @@
 
 #include "arguments.h"
 #include "grain/grain_params.h"
-#include "renderer/bake_specs.h"
+#include "renderer/bake/bake_specs.h"
+#include "renderer/bake/grid_bake.h"
+#include "renderer/bake/grid_writers.h"
 #include "renderer/colour_management.h"
-#include "renderer/grid_bake.h"
-#include "renderer/grid_writers.h"
 #include "skeleton/skeleton_file.h"
 #include "skeleton/skeleton_index.h"
 #include "util/input_error.h"

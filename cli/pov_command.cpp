@@ -6,8 +6,7 @@
 
 #include <cmath>
 
-#include "renderer/grid_writers.h"
-#include "renderer/pov_export.h"
+#include "renderer/pov/pov_export.h"
 #include "renderer/scene_file.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"

@@ -6,9 +6,9 @@
 
 #include "arguments.h"
 #include "renderer/colour_management.h"
-#include "renderer/grid_writers.h"
 #include "renderer/path_tracer.h"
 #include "renderer/scene_file.h"
+#include "util/atomic_output.h"
 #include "util/input_error.h"
 
 namespace nenrin {

@@ -7,14 +7,14 @@
 
 #include "arguments.h"
 #include "renderer/colour_management.h"
-#include "renderer/grid_writers.h"
-#include "renderer/tree_preview.h"
-#include "skeleton/gran1_import.h"
-#include "skeleton/measured_branches.h"
-#include "skeleton/qsm_import.h"
+#include "renderer/preview/tree_preview.h"
 #include "skeleton/skeleton_file.h"
 #include "skeleton/skeleton_writer.h"
+#include "skeleton/sources/measured/gran1_import.h"
+#include "skeleton/sources/measured/measured_branches.h"
+#include "skeleton/sources/measured/qsm_import.h"
 #include "tree_model_commands.h"
+#include "util/atomic_output.h"
 #include "util/input_error.h"
 
 namespace nenrin {

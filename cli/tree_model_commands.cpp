@@ -7,16 +7,16 @@
 #include <memory>
 #include <string>
 
-#include "renderer/grid_writers.h"
-#include "skeleton/akagi_model.h"
-#include "skeleton/hayashi_conifer.h"
-#include "skeleton/hayashi_options.h"
-#include "skeleton/kanayama_growth.h"
-#include "skeleton/kanayama_species.h"
-#include "skeleton/kunii_fell.h"
-#include "skeleton/kunii_stand.h"
-#include "skeleton/kunii_stand_file.h"
 #include "skeleton/skeleton_writer.h"
+#include "skeleton/sources/akagi/akagi_model.h"
+#include "skeleton/sources/hayashi/hayashi_conifer.h"
+#include "skeleton/sources/hayashi/hayashi_options.h"
+#include "skeleton/sources/kanayama/kanayama_growth.h"
+#include "skeleton/sources/kanayama/kanayama_species.h"
+#include "skeleton/sources/kunii/kunii_fell.h"
+#include "skeleton/sources/kunii/kunii_stand.h"
+#include "skeleton/sources/kunii/kunii_stand_file.h"
+#include "util/atomic_output.h"
 #include "util/input_error.h"
 #include "util/progress.h"
 

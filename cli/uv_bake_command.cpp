@@ -5,8 +5,8 @@
 #include <chrono>
 #include <filesystem>
 
+#include "renderer/bake/uv_bake.h"
 #include "renderer/scene_file.h"
-#include "renderer/uv_bake.h"
 #include "util/input_error.h"
 
 namespace nenrin {

@@ -10,10 +10,10 @@
 
 #include "grain/growth_field.h"
 #include "renderer/environment_map.h"
+#include "renderer/geometry/obj_mesh.h"
+#include "renderer/geometry/rigid_transform.h"
 #include "renderer/image_texture.h"
-#include "renderer/laminated_product.h"
-#include "renderer/obj_mesh.h"
-#include "renderer/rigid_transform.h"
+#include "renderer/products/laminated_product.h"
 #include "shader/wood_shader.h"
 #include "skeleton/skeleton_index.h"
 

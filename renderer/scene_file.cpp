@@ -7,8 +7,8 @@
 #include <map>
 
 #include "grain/grain_params.h"
-#include "renderer/cut_plan.h"
-#include "renderer/log_slice.h"
+#include "renderer/products/cut_plan.h"
+#include "renderer/products/log_slice.h"
 #include "skeleton/skeleton_file.h"
 #include "util/json_reader.h"
 

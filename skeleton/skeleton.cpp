@@ -1,6 +1,7 @@
 #include "skeleton/skeleton.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace nenrin {
@@ -66,6 +67,20 @@ double Skeleton::maxBranchGamma() const {
     for (const auto& s : segments_)
         if (s.kind == SegmentKind::Branch) g = std::max(g, s.gamma);
     return g;
+}
+
+Vec3 pithAtHeight(const Skeleton& skeleton, double z) {
+    const SkeletonChain& trunk = skeleton.chain(0);
+    for (uint32_t i = 0; i < trunk.segmentCount; ++i) {
+        const auto& s = skeleton.segment(trunk.firstSegment + i);
+        Vec3 a = skeleton.start(s), b = skeleton.end(s);
+        if ((z - a.z) * (z - b.z) <= 0 && a.z != b.z) return lerp(a, b, (z - a.z) / (b.z - a.z));
+    }
+    const auto& first = skeleton.segment(trunk.firstSegment);
+    const auto& last = skeleton.segment(trunk.firstSegment + trunk.segmentCount - 1);
+    Vec3 lo = skeleton.start(first), hi = skeleton.end(last);
+    Vec3 p = std::abs(z - lo.z) < std::abs(z - hi.z) ? lo : hi;
+    return {p.x, p.y, z};
 }
 
 }  // namespace nenrin

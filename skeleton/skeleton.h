@@ -101,4 +101,7 @@ private:
     std::vector<double> ringWidths_;
 };
 
+/// The pith (trunk axis) position at height z, or the nearest trunk end.
+Vec3 pithAtHeight(const Skeleton& skeleton, double z);
+
 }  // namespace nenrin

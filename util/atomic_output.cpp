@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <system_error>
 
@@ -24,6 +26,26 @@ void checkOutputPath(const std::string& path) {
     if (access(dir.c_str(), W_OK) != 0)
         throw InputError(path, "",
                          "cannot write output: folder '" + dir.string() + "' is not writable");
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string e = fs::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+    return e;
+}
+
+void checkOutputName(const std::string& path, const std::vector<std::string>& extensions) {
+    std::string e = lowerExtension(path);
+    std::string list;
+    bool known = false;
+    for (const auto& x : extensions) {
+        known |= e == x;
+        list += (list.empty() ? "" : ", ") + x;
+    }
+    if (!known)
+        throw InputError(path, "",
+                         "unsupported output file name: expected a name ending in " + list);
+    checkOutputPath(path);
 }
 
 AtomicOutput::AtomicOutput(std::string path) : final_(std::move(path)) {

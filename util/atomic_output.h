@@ -5,12 +5,21 @@
 /// exception), the destructor removes the temporary file.
 
 #include <string>
+#include <vector>
 
 namespace nenrin {
 
 /// Throws InputError unless `path` names a file that could be created: its folder exists and
 /// is writable, and it is not itself a folder. Call before long work.
 void checkOutputPath(const std::string& path);
+
+/// Throws InputError unless `path` ends in one of `extensions` (lower case, with the dot) and
+/// can be written (its folder exists and is writable). Call before baking, so a bad name
+/// fails at once rather than after the work.
+void checkOutputName(const std::string& path, const std::vector<std::string>& extensions);
+
+/// The extension of `path` in lower case, with its dot ("" when it has none).
+std::string lowerExtension(const std::string& path);
 
 class AtomicOutput {
 public:

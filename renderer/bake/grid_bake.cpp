@@ -1,0 +1,74 @@
+#include "renderer/bake/grid_bake.h"
+
+#include <algorithm>
+#include <array>
+
+#include "renderer/parallel_tiles.h"
+#include "util/progress.h"
+
+namespace nenrin {
+
+namespace {
+// A tile is one evaluateBatch call: 32 x 32 samples (slices) or 8 x 8 x 8 (volumes), listed
+// as runs of 64 compact samples (8 x 8 or 4 x 4 x 4 chunks), the field's pruning unit. One
+// index query per tile, tight candidate lists per chunk.
+constexpr int kTile2D = 32, kChunk2D = 8;
+constexpr int kTile3D = 8, kChunk3D = 4;
+}  // namespace
+
+void bakeGrid(const WoodShader& shader, BakedGrid& grid, const BakeOptions& options) {
+    grid.data.assign(grid.sampleCount() * BakedGrid::kChannels, 0.f);
+    const bool volume = grid.depth > 1;
+    const int kTile = volume ? kTile3D : kTile2D;
+    const int chunk = volume ? kChunk3D : kChunk2D;
+    const int tz = volume ? kTile3D : 1;
+    const int cz = volume ? kChunk3D : 1;
+    const int nx = (grid.width + kTile - 1) / kTile;
+    const int ny = (grid.height + kTile - 1) / kTile;
+    const int nz = (grid.depth + tz - 1) / tz;
+    const size_t tiles = size_t(nx) * ny * nz;
+    ProgressReporter progress(static_cast<long long>(tiles), options.title, options.quiet);
+
+    parallelTiles(tiles, options.threads, [&](size_t tile) {
+        thread_local GrowthScratch scratch;
+        thread_local std::vector<GrowthSample> samples;
+        thread_local std::vector<Vec3> points;
+        thread_local std::vector<WoodSample> wood;
+        thread_local std::vector<std::array<int, 3>> indices;
+        const int ti = static_cast<int>(tile % nx);
+        const int tj = static_cast<int>((tile / nx) % ny);
+        const int tk = static_cast<int>(tile / (size_t(nx) * ny));
+        const int i0 = ti * kTile, i1 = std::min(grid.width, i0 + kTile);
+        const int j0 = tj * kTile, j1 = std::min(grid.height, j0 + kTile);
+        const int k0 = tk * tz, k1 = std::min(grid.depth, k0 + tz);
+        points.clear();
+        indices.clear();
+        for (int ck = k0; ck < k1; ck += cz)
+            for (int cj = j0; cj < j1; cj += chunk)
+                for (int ci = i0; ci < i1; ci += chunk)
+                    for (int k = ck; k < std::min(k1, ck + cz); ++k)
+                        for (int j = cj; j < std::min(j1, cj + chunk); ++j)
+                            for (int i = ci; i < std::min(i1, ci + chunk); ++i) {
+                                points.push_back(grid.origin + grid.stepX * i + grid.stepY * j +
+                                                 grid.stepZ * k);
+                                indices.push_back({i, j, k});
+                            }
+        wood.resize(points.size());
+        shader.evaluate(points, wood, scratch, samples);
+        for (size_t n = 0; n < points.size(); ++n) {
+            const auto [i, j, k] = indices[n];
+            float* px = grid.at(i, j, k);
+            const WoodSample& w = wood[n];
+            px[0] = static_cast<float>(w.albedo.r);
+            px[1] = static_cast<float>(w.albedo.g);
+            px[2] = static_cast<float>(w.albedo.b);
+            px[3] = static_cast<float>(w.coverage);
+            px[4] = static_cast<float>(w.T);
+            px[5] = static_cast<float>(w.knot);
+        }
+        progress.advance();
+    });
+    progress.done();
+}
+
+}  // namespace nenrin

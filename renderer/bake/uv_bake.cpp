@@ -1,0 +1,236 @@
+#include "renderer/bake/uv_bake.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "renderer/exr_file.h"
+#include "renderer/parallel_tiles.h"
+#include "util/atomic_output.h"
+#include "util/input_error.h"
+#include "util/progress.h"
+
+namespace nenrin {
+
+namespace {
+
+constexpr int kTile = 16;
+
+/// Per triangle: the object-space derivatives of position over uv (the tangent frame and the
+/// texel footprint come from them).
+struct TriangleFrame {
+    Vec3 dpdu, dpdv, normal;
+    bool valid = false;
+};
+
+TriangleFrame triangleFrame(const TriangleMesh& m, uint32_t t) {
+    const auto& tri = m.triangles[t];
+    Vec3 p0 = m.positions[tri[0]], p1 = m.positions[tri[1]], p2 = m.positions[tri[2]];
+    auto uv0 = m.uvs[tri[0]], uv1 = m.uvs[tri[1]], uv2 = m.uvs[tri[2]];
+    double du1 = uv1[0] - uv0[0], dv1 = uv1[1] - uv0[1];
+    double du2 = uv2[0] - uv0[0], dv2 = uv2[1] - uv0[1];
+    double det = du1 * dv2 - du2 * dv1;
+    TriangleFrame f;
+    f.normal = normalize(cross(p1 - p0, p2 - p0));
+    if (std::abs(det) < 1e-30) return f;
+    Vec3 e1 = p1 - p0, e2 = p2 - p0;
+    f.dpdu = (e1 * dv2 - e2 * dv1) / det;
+    f.dpdv = (e2 * du1 - e1 * du2) / det;
+    f.valid = true;
+    return f;
+}
+
+void encodeUnit(float* out, const Vec3& v) {
+    out[0] = float(0.5 * v.x + 0.5);
+    out[1] = float(0.5 * v.y + 0.5);
+    out[2] = float(0.5 * v.z + 0.5);
+}
+
+}  // namespace
+
+UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOptions& options) {
+    const Material& material = scene.materials[object.material];
+    if (object.shape != ShapeType::Mesh || !object.mesh || object.mesh->uvs.empty())
+        throw InputError(scene.file, "object \"" + object.name + "\"",
+                         "a UV bake needs a mesh object with texture coordinates (vt in the OBJ)");
+    if (material.type != MaterialType::Wood)
+        throw InputError(scene.file, "object \"" + object.name + "\"",
+                         "a UV bake needs an object with a wood material");
+    const TriangleMesh& mesh = *object.mesh;
+    const WoodShader& shader = *material.wood;
+
+    UvMaps maps;
+    maps.width = options.width;
+    maps.height = options.height;
+    maps.raster = rasterizeUv(mesh, options.width, options.height);
+    const size_t n = size_t(options.width) * options.height;
+    maps.baseColour.assign(4 * n, 0);
+    maps.roughness.assign(n, 0);
+    maps.normal.assign(3 * n, 0);
+    maps.fibre.assign(3 * n, 0);
+    maps.growth.assign(2 * n, 0);
+
+    std::vector<TriangleFrame> frames(mesh.triangles.size());
+    for (uint32_t t = 0; t < frames.size(); ++t) frames[t] = triangleFrame(mesh, t);
+    std::vector<Vec3> vertexNormals =
+        mesh.normals.empty() ? computeVertexNormals(mesh) : mesh.normals;
+
+    const int tilesX = (options.width + kTile - 1) / kTile;
+    const int tilesY = (options.height + kTile - 1) / kTile;
+    ProgressReporter progress(static_cast<long long>(tilesX) * tilesY, "Baking UV maps",
+                              options.quiet);
+    const RigidTransform& treeFromObject = object.treeFromObject;
+    parallelTiles(size_t(tilesX) * tilesY, options.threads, [&](size_t tile) {
+        const int x0 = static_cast<int>(tile % tilesX) * kTile;
+        const int y0 = static_cast<int>(tile / tilesX) * kTile;
+        const int x1 = std::min(options.width, x0 + kTile);
+        const int y1 = std::min(options.height, y0 + kTile);
+        std::vector<size_t> texels;
+        std::vector<Vec3> points, normals, tangents, bitangents;
+        std::vector<SurfaceFootprint> footprints;
+        for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x) {
+                size_t i = size_t(y) * options.width + x;
+                int32_t t = maps.raster.triangle[i];
+                if (t < 0 || !frames[t].valid) continue;
+                const auto& tri = mesh.triangles[t];
+                const auto& b = maps.raster.barycentric[i];
+                Vec3 p = mesh.positions[tri[0]] * b[0] + mesh.positions[tri[1]] * b[1] +
+                         mesh.positions[tri[2]] * b[2];
+                Vec3 nrm = normalize(vertexNormals[tri[0]] * b[0] + vertexNormals[tri[1]] * b[1] +
+                                     vertexNormals[tri[2]] * b[2]);
+                if (lengthSquared(nrm) == 0) nrm = frames[t].normal;
+                // Tangent along +u, bitangent along +v (mirrored charts flip it), both in the
+                // surface: the frame normal maps and fibre maps are expressed in.
+                Vec3 tangent = normalize(frames[t].dpdu - nrm * dot(nrm, frames[t].dpdu));
+                Vec3 bitangent = cross(nrm, tangent);
+                if (dot(bitangent, frames[t].dpdv) < 0) bitangent = -bitangent;
+                texels.push_back(i);
+                points.push_back(treeFromObject.point(p));
+                normals.push_back(nrm);
+                tangents.push_back(tangent);
+                bitangents.push_back(bitangent);
+                footprints.push_back({treeFromObject.vector(frames[t].dpdu / options.width),
+                                      treeFromObject.vector(frames[t].dpdv / options.height)});
+            }
+        }
+        std::vector<WoodSurfaceSample> samples(points.size());
+        WoodScratch scratch;
+        shader.evaluateSurface(points, footprints, samples, scratch);
+        const RigidTransform objectFromTree = treeFromObject.inverse();
+        for (size_t k = 0; k < texels.size(); ++k) {
+            size_t i = texels[k];
+            const WoodSurfaceSample& s = samples[k];
+            Rgb albedo = s.coverage > 0 ? s.albedo : kBarkAlbedo;
+            maps.baseColour[4 * i] = float(albedo.r);
+            maps.baseColour[4 * i + 1] = float(albedo.g);
+            maps.baseColour[4 * i + 2] = float(albedo.b);
+            maps.baseColour[4 * i + 3] = 1;
+            maps.roughness[i] = float(s.roughness);
+            const Vec3 &n = normals[k], &t = tangents[k], &bt = bitangents[k];
+            Vec3 g = objectFromTree.vector(s.reliefGradient);
+            Vec3 bumped = normalize(n - (g - n * dot(g, n)));
+            encodeUnit(&maps.normal[3 * i], {dot(bumped, t), dot(bumped, bt), dot(bumped, n)});
+            Vec3 f = objectFromTree.vector(s.fibre);
+            encodeUnit(&maps.fibre[3 * i], {dot(f, t), dot(f, bt), dot(f, n)});
+            maps.growth[2 * i] = float(s.T);
+            maps.growth[2 * i + 1] = float(s.knot);
+        }
+        progress.advance();
+    });
+    progress.done();
+
+    // Gutter: every map grows by the same rings, so they stay aligned.
+    std::vector<uint8_t> base = maps.raster.covered();
+    auto pad = [&](std::vector<float>& pixels, int channels) {
+        std::vector<uint8_t> covered = base;
+        dilate(pixels, channels, maps.width, maps.height, covered, options.padding);
+    };
+    // Alpha keeps the unpadded coverage: pad RGB only.
+    std::vector<float> rgb(3 * n);
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) rgb[3 * i + c] = maps.baseColour[4 * i + c];
+    pad(rgb, 3);
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) maps.baseColour[4 * i + c] = rgb[3 * i + c];
+    pad(maps.roughness, 1);
+    pad(maps.normal, 3);
+    pad(maps.fibre, 3);
+    pad(maps.growth, 2);
+    return maps;
+}
+
+std::vector<std::string> writeUvMaps(const UvMaps& maps, const SceneObject& object,
+                                     const std::string& folder,
+                                     const std::map<std::string, std::string>& metadata) {
+    namespace fs = std::filesystem;
+    if (!fs::is_directory(folder))
+        throw InputError(folder, "output", "expected an existing folder for the maps");
+    struct Map {
+        const char* file;
+        const std::vector<float>* pixels;
+        std::vector<std::string> channels;
+    };
+    const std::vector<Map> list = {
+        {"basecolor.exr", &maps.baseColour, {"R", "G", "B", "A"}},
+        {"roughness.exr", &maps.roughness, {"Y"}},
+        {"normal.exr", &maps.normal, {"R", "G", "B"}},
+        {"fibre.exr", &maps.fibre, {"R", "G", "B"}},
+        {"growth.exr", &maps.growth, {"T", "knot"}},
+    };
+    std::string stem = object.name;
+    for (char& c : stem)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    std::vector<std::unique_ptr<AtomicOutput>> outputs;
+    std::vector<std::string> written;
+    for (const Map& m : list) {
+        std::string path = (fs::path(folder) / m.file).string();
+        outputs.push_back(std::make_unique<AtomicOutput>(path));
+        writeFloatExr(path, outputs.back()->temporaryPath(), maps.width, maps.height, m.channels,
+                      m.pixels->data(), metadata);
+        written.push_back(path);
+    }
+    // The mesh and a material pointing at the maps, so the bake opens textured.
+    const TriangleMesh& mesh = *object.mesh;
+    std::string objPath = (fs::path(folder) / (stem + ".obj")).string();
+    std::string mtlPath = (fs::path(folder) / (stem + ".mtl")).string();
+    outputs.push_back(std::make_unique<AtomicOutput>(objPath));
+    {
+        std::ofstream obj(outputs.back()->temporaryPath());
+        obj << "# nenrin bake uv: " << object.name << "\nmtllib " << stem << ".mtl\nusemtl " << stem
+            << "\n";
+        for (const Vec3& p : mesh.positions) obj << fmt::format("v {} {} {}\n", p.x, p.y, p.z);
+        for (const auto& uv : mesh.uvs) obj << fmt::format("vt {} {}\n", uv[0], uv[1]);
+        for (const Vec3& nrm : mesh.normals)
+            obj << fmt::format("vn {} {} {}\n", nrm.x, nrm.y, nrm.z);
+        for (const auto& t : mesh.triangles) {
+            obj << "f";
+            for (uint32_t v : t) {
+                if (mesh.normals.empty())
+                    obj << fmt::format(" {}/{}", v + 1, v + 1);
+                else
+                    obj << fmt::format(" {}/{}/{}", v + 1, v + 1, v + 1);
+            }
+            obj << "\n";
+        }
+        if (!obj) throw InputError(objPath, "output", "could not write the mesh");
+    }
+    written.push_back(objPath);
+    outputs.push_back(std::make_unique<AtomicOutput>(mtlPath));
+    {
+        std::ofstream mtl(outputs.back()->temporaryPath());
+        mtl << "# nenrin bake uv: linear EXR maps (docs/uv-bake.md)\nnewmtl " << stem
+            << "\nKd 1 1 1\nKs 0 0 0\nmap_Kd basecolor.exr\nmap_Pr roughness.exr\n"
+               "norm normal.exr\nmap_Bump -bm 1 normal.exr\n";
+        if (!mtl) throw InputError(mtlPath, "output", "could not write the material");
+    }
+    written.push_back(mtlPath);
+    // Only now, with every file complete, do they get their names.
+    for (auto& o : outputs) o->commit();
+    return written;
+}
+
+}  // namespace nenrin

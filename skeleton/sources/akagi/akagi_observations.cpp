@@ -1,0 +1,142 @@
+#include "skeleton/sources/akagi/akagi_observations.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "util/input_error.h"
+
+namespace nenrin {
+
+namespace {
+
+std::string trim(const std::string& s) {
+    size_t b = s.find_first_not_of(" \t\r"), e = s.find_last_not_of(" \t\r");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> splitFields(const std::string& line) {
+    std::vector<std::string> fields;
+    std::string field;
+    std::istringstream in(line);
+    while (std::getline(in, field, ',')) fields.push_back(trim(field));
+    if (!line.empty() && line.back() == ',') fields.push_back("");
+    return fields;
+}
+
+}  // namespace
+
+ObservationTable parseAkagiObservations(const std::string& text, const std::string& source) {
+    ObservationTable table;
+    table.source = source;
+    std::istringstream in(text);
+    std::string raw;
+    int lineNo = 0;
+    std::vector<int> columnParam;  // per column: -1 = tree, else the parameter index
+    bool haveHeader = false;
+    auto where = [&](int line) { return "line " + std::to_string(line); };
+    while (std::getline(in, raw)) {
+        ++lineNo;
+        std::string line = trim(raw);
+        if (line.empty() || line[0] == '#') continue;
+        std::vector<std::string> fields = splitFields(line);
+        if (!haveHeader) {
+            std::vector<bool> seen(kAkagiParamCount, false);
+            bool seenTree = false;
+            for (const std::string& name : fields) {
+                if (name == "tree") {
+                    if (seenTree) throw InputError(source, where(lineNo), "column 'tree' twice");
+                    seenTree = true;
+                    columnParam.push_back(-1);
+                    continue;
+                }
+                int i = akagiParamIndex(name);
+                if (i < 0)
+                    throw InputError(source, where(lineNo),
+                                     "unknown column '" + name +
+                                         "' (expected 'tree' and the 13 parameter names, "
+                                         "Height ... GrowthGain)");
+                if (seen[i]) throw InputError(source, where(lineNo), "column '" + name + "' twice");
+                seen[i] = true;
+                columnParam.push_back(i);
+            }
+            if (!seenTree)
+                throw InputError(source, where(lineNo), "the header lacks column 'tree'");
+            for (int i = 0; i < kAkagiParamCount; ++i)
+                if (!seen[i])
+                    throw InputError(
+                        source, where(lineNo),
+                        std::string("the header lacks column '") + akagiParamNames()[i] + "'");
+            haveHeader = true;
+            continue;
+        }
+        if (fields.size() != columnParam.size())
+            throw InputError(source, where(lineNo),
+                             "expected " + std::to_string(columnParam.size()) + " fields, found " +
+                                 std::to_string(fields.size()));
+        AkagiParams row;
+        int treeIndex = -1;
+        for (size_t c = 0; c < fields.size(); ++c) {
+            const std::string& f = fields[c];
+            if (columnParam[c] < 0) {
+                if (f.empty()) throw InputError(source, where(lineNo), "empty tree id");
+                for (size_t t = 0; t < table.treeIds.size(); ++t)
+                    if (table.treeIds[t] == f) treeIndex = static_cast<int>(t);
+                if (treeIndex < 0) {
+                    treeIndex = static_cast<int>(table.treeIds.size());
+                    table.treeIds.push_back(f);
+                }
+                continue;
+            }
+            int i = columnParam[c];
+            const char* name = akagiParamNames()[i];
+            char* end = nullptr;
+            errno = 0;
+            double v = std::strtod(f.c_str(), &end);
+            if (f.empty() || *end != '\0' || errno == ERANGE)
+                throw InputError(
+                    source, where(lineNo),
+                    std::string("column '") + name + "': expected a number, found '" + f + "'");
+            std::string problem = akagiParamProblem(i, v);
+            // The model's Gamma likelihood needs MainGrowth > 0: a dichotomous fork is written
+            // with a small share (its main child then never grows past a leaf).
+            if (problem.empty() && i == 5 && v <= 0)
+                problem =
+                    "expected a number > 0 (Gamma-distributed in the model; write a small "
+                    "share such as 0.001 for a dichotomous fork), found 0";
+            if (problem.empty() && i == 12 && v <= 0)
+                problem = "expected a number > 0 (Gamma-distributed in the model), found " + f;
+            if (problem.empty() && i == 2 && v <= 0)
+                problem = "expected a number > 0 (Gamma-distributed in the model), found " + f;
+            if (!problem.empty())
+                throw InputError(source, where(lineNo),
+                                 std::string("column '") + name + "': " + problem);
+            row[i] = v;
+        }
+        table.rows.push_back(row);
+        table.rowTree.push_back(treeIndex);
+        table.rowLine.push_back(lineNo);
+    }
+    if (!haveHeader) throw InputError(source, "", "no header line (and no observations)");
+    if (table.treeIds.size() < 2)
+        throw InputError(source, "",
+                         "expected observations of at least 2 trees, found " +
+                             std::to_string(table.treeIds.size()));
+    if (table.rows.size() < 4)
+        throw InputError(
+            source, "",
+            "expected at least 4 observation rows, found " + std::to_string(table.rows.size()));
+    return table;
+}
+
+ObservationTable loadAkagiObservations(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot open the observation table");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    return parseAkagiObservations(buffer.str(), path);
+}
+
+}  // namespace nenrin

@@ -1,0 +1,65 @@
+// Laminated layouts: which board a point of the block belongs to, and how far the nearest
+// glue line is.
+
+#include "renderer/products/laminated_product.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace nenrin {
+namespace {
+
+TEST(LaminatedLayout, GlulamStacksLamellaeAlongY) {
+    LaminatedLayout g = glulamLayout(4, 0.04, 0.14, 2.0, 0, 0, 1);
+    ASSERT_EQ(g.lamellae.size(), 4u);
+    EXPECT_EQ(g.size, (Vec3{2.0, 0.16, 0.14}));
+    for (int i = 0; i < 4; ++i) {
+        double y = -0.08 + 0.04 * i + 0.02;
+        EXPECT_EQ(g.lamellaAt({0.3, y, 0.01}), uint32_t(i));
+        EXPECT_NEAR(g.glueDistance({0.3, y, 0.01}), 0.02, 1e-12);
+    }
+    EXPECT_NEAR(g.glueDistance({0.3, -0.04 + 0.001, 0.0}), 0.001, 1e-12);
+    // The outer faces are not glued.
+    EXPECT_NEAR(g.glueDistance({0.3, -0.08 + 0.001, 0.0}), 0.039, 1e-12);
+}
+
+TEST(LaminatedLayout, FingerJointsSplitLamellaeInZigZags) {
+    LaminatedLayout g = glulamLayout(2, 0.04, 0.14, 4.0, 0.8, 1.2, 7);
+    g.fingers = {0.015, 0.006};
+    ASSERT_GT(g.lamellae.size(), 4u);  // each lamella in several pieces
+    const auto& strip = g.layers[0].strips[0];
+    ASSERT_GT(strip.pieceEnds.size(), 1u);
+    double joint = strip.pieceEnds[0];
+    // Across the width, the boundary moves by the finger length: the same x belongs to one
+    // piece at a finger's tip and to the next at its root.
+    std::set<uint32_t> seen;
+    for (int k = 0; k < 7; ++k) seen.insert(g.lamellaAt({joint, -0.02, -0.07 + k * 0.0005}));
+    EXPECT_EQ(seen.size(), 2u);
+    EXPECT_LT(g.glueDistance({joint, -0.02, -0.07 + 0.0015}), 0.008);
+}
+
+TEST(LaminatedLayout, CltCrossesItsLayers) {
+    LaminatedLayout c = cltLayout(3, 0.03, 0.15, 1.2, 0.9);
+    ASSERT_EQ(c.layers.size(), 3u);
+    EXPECT_EQ(c.layers[0].lengthAxis, 0);
+    EXPECT_EQ(c.layers[1].lengthAxis, 2);
+    EXPECT_EQ(c.layers[0].strips.size(), 6u);  // 0.9 / 0.15 boards across the outer layers
+    EXPECT_EQ(c.layers[1].strips.size(), 8u);  // 1.2 / 0.15 across the middle one
+    EXPECT_EQ(c.lamellae.size(), 20u);
+    // A board of the middle layer runs along z: its lamella x axis is product z.
+    const Lamella& middle = c.lamellae[c.lamellaAt({0.0, 0.0, 0.0})];
+    EXPECT_EQ(middle.lengthAxis, 2);
+    EXPECT_NEAR(std::abs(middle.lamellaFromProduct.inverse().x.z), 1.0, 1e-12);
+}
+
+TEST(LaminatedLayout, EdgeGluedBoardsSitSideBySide) {
+    LaminatedLayout t = edgeGluedLayout(4, 0.03, 0.8, 1.6);
+    ASSERT_EQ(t.lamellae.size(), 4u);
+    EXPECT_EQ(t.lamellaAt({0, 0, -0.35}), 0u);
+    EXPECT_EQ(t.lamellaAt({0, 0, 0.35}), 3u);
+    EXPECT_NEAR(t.glueDistance({0.5, 0.0, 0.2 + 0.003}), 0.003, 1e-12);
+}
+
+}  // namespace
+}  // namespace nenrin

@@ -1,0 +1,146 @@
+// The wood surface response: the ring prefilter against brute-force averaging over the
+// footprint, grad T against the analytic trunk, and the fibre direction.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "grain/growth_terms.h"
+#include "shader/ring_profile.h"
+#include "shader/wood_shader.h"
+#include "skeleton/skeleton_index.h"
+#include "tests/test_trees.h"
+
+namespace nenrin {
+namespace {
+
+TEST(RingProfile, FilteredMatchesTheMeanOfPointSamples) {
+    for (double n : {1.0, 5.0, 12.0}) {
+        RingProfile rings(n);
+        for (double width : {0.01, 0.3, 1.0, 3.7, 10.0}) {
+            for (double T : {3.1, 7.55, 12.999}) {
+                const int samples = 20000;
+                double sum = 0;
+                for (int i = 0; i < samples; ++i)
+                    sum += rings.lateWood(T + width * ((i + 0.5) / samples - 0.5));
+                EXPECT_NEAR(rings.filtered(T, width), sum / samples, 2e-4)
+                    << "n " << n << " width " << width << " T " << T;
+            }
+        }
+    }
+}
+
+TEST(RingProfile, TableFollowsEquationSix) {
+    for (double n : {1.0, 5.0, 12.0}) {
+        RingProfile rings(n);
+        double worst = 0;
+        for (int i = 0; i < 100000; ++i) {
+            double T = 3 + i / 100000.0;
+            worst = std::max(worst, std::abs(rings.lateWood(T) - lateWoodFraction(T, n)));
+        }
+        EXPECT_LT(worst, 5e-5) << "n " << n;
+    }
+}
+
+TEST(RingProfile, WideFootprintsTendToTheRingMean) {
+    RingProfile rings(5);
+    EXPECT_NEAR(rings.filtered(10.3, 40.0), rings.ringMean(), 1e-3);
+    EXPECT_NEAR(rings.filtered(10.3, 0), rings.lateWood(10.3), 0);
+}
+
+TEST(RingProfile, SlopeIsTheDerivativeOfTheFilteredProfile) {
+    RingProfile rings(5);
+    const double w = 0.2, h = 1e-4;
+    for (double T : {2.05, 2.5, 2.93, 3.0}) {
+        double numeric = (rings.filtered(T + h, w) - rings.filtered(T - h, w)) / (2 * h);
+        EXPECT_NEAR(rings.filteredSlope(T, w), numeric, 2e-3 * std::max(1.0, std::abs(numeric)));
+    }
+}
+
+class StraightTrunkSurface : public ::testing::Test {
+protected:
+    StraightTrunkSurface() : skeleton_(test::straightTrunk(10, 0.5)), index_(skeleton_) {
+        grain_.radialSpeed = 0.004;
+        grain_.colour.microAmplitude = 0;
+        field_ = std::make_unique<GrowthField>(index_, grain_);
+        shader_ = std::make_unique<WoodShader>(*field_);
+    }
+    Skeleton skeleton_;
+    SkeletonIndex index_;
+    GrainParams grain_;
+    std::unique_ptr<GrowthField> field_;
+    std::unique_ptr<WoodShader> shader_;
+};
+
+TEST_F(StraightTrunkSurface, GradientIsRadialOverTheRadialSpeed) {
+    // T = z / Sa + r / Sb: grad T = (x/r, y/r) / Sb + (0, 0, 1/Sa).
+    std::vector<Vec3> points{{0.1, 0, 1}, {0.03, -0.05, 2.5}, {-0.12, 0.07, 4}};
+    std::vector<WoodSurfaceSample> out(points.size());
+    WoodScratch scratch;
+    shader_->evaluateSurface(points, {}, out, scratch);
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Vec3& p = points[i];
+        double r = std::hypot(p.x, p.y);
+        Vec3 expected{p.x / r / 0.004, p.y / r / 0.004, 1 / 0.5};
+        // Forward differences over 2 % of a ring: the curvature of r costs ~h / (2 r).
+        EXPECT_NEAR(length(out[i].gradientT - expected), 0, 0.005 * length(expected));
+        // Fibres lie in the ring surface and run up the trunk.
+        EXPECT_NEAR(dot(out[i].fibre, normalize(out[i].gradientT)), 0, 1e-9);
+        EXPECT_GT(out[i].fibre.z, 0.99);
+    }
+}
+
+TEST_F(StraightTrunkSurface, FootprintFilterAveragesTheRingsUnderIt) {
+    // A footprint along x at (0.1, 0, 1) spans `rings` rings radially; the shader's filtered
+    // late-wood share must equal the mean of point samples across it.
+    for (double rings : {0.5, 2.0, 7.3}) {
+        double w = rings * 0.004;
+        SurfaceFootprint f{{w, 0, 0}, {0, 0, 1e-6}};
+        Vec3 p{0.1, 0, 1};
+        std::vector<WoodSurfaceSample> out(1);
+        WoodScratch scratch;
+        shader_->evaluateSurface(std::span(&p, 1), std::span(&f, 1), out, scratch);
+        EXPECT_NEAR(out[0].ringFilterWidth, rings, 0.01 * rings);
+        const int samples = 2000;
+        std::vector<Vec3> line(samples);
+        for (int i = 0; i < samples; ++i) line[i] = p + Vec3{w * ((i + 0.5) / samples - 0.5), 0, 0};
+        std::vector<WoodSurfaceSample> points(samples);
+        shader_->evaluateSurface(line, {}, points, scratch);
+        double mean = 0;
+        for (const auto& s : points) mean += s.lateWood;
+        EXPECT_NEAR(out[0].lateWood, mean / samples, 0.01) << rings << " rings";
+    }
+}
+
+TEST_F(StraightTrunkSurface, IsotropicFootprintDiameterFiltersLikeDifferentials) {
+    Vec3 p{0.1, 0, 1};
+    SurfaceFootprint along{{0.01, 0, 0}, {0, 0.01, 0}};
+    SurfaceFootprint iso{{}, {}, 0.01};
+    std::vector<WoodSurfaceSample> a(1), b(1);
+    WoodScratch scratch;
+    shader_->evaluateSurface(std::span(&p, 1), std::span(&along, 1), a, scratch);
+    shader_->evaluateSurface(std::span(&p, 1), std::span(&iso, 1), b, scratch);
+    EXPECT_NEAR(a[0].ringFilterWidth, b[0].ringFilterWidth, 0.01 * b[0].ringFilterWidth);
+}
+
+TEST(WoodSurface, FibresBendAroundAKnot) {
+    // Beside a horizontal branch the rings wrap around it: the fibre direction there leaves
+    // the trunk axis, while far from it it runs straight up.
+    ChainProperties props;
+    props.gamma = 1;
+    Skeleton sk = test::trunkWithBranch(2, {1, 0, 0}, 1.0, props);
+    SkeletonIndex index(sk);
+    GrainParams g;
+    g.radialSpeed = 0.004;
+    GrowthField field(index, g);
+    WoodShader shader(field);
+    std::vector<Vec3> points{{0.06, 0.0, 2.02}, {0.06, 0.0, 3.5}};
+    std::vector<WoodSurfaceSample> out(2);
+    WoodScratch scratch;
+    shader.evaluateSurface(points, {}, out, scratch);
+    EXPECT_LT(std::abs(out[0].fibre.z), 0.95);  // bent by the knot
+    EXPECT_GT(out[1].fibre.z, 0.999);           // clear wood
+}
+
+}  // namespace
+}  // namespace nenrin
