@@ -8,6 +8,7 @@
 #include "arguments.h"
 #include "renderer/colour_management.h"
 #include "renderer/preview/tree_preview.h"
+#include "ring_series_command.h"
 #include "skeleton/skeleton_file.h"
 #include "skeleton/skeleton_writer.h"
 #include "skeleton/sources/measured/gran1_import.h"
@@ -203,6 +204,7 @@ CLI::App* addTreeCommands(CLI::App& app) {
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
     pre->callback([po] { runPreview(*po); });
+    addRingSeriesCommand(*tree);
     addTreeModelCommands(*tree);
     return tree;
 }

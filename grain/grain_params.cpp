@@ -56,6 +56,20 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
         g.sway.seed = static_cast<uint64_t>(s->integer("seed", 1, 0, 1LL << 53));
         s->finish();
     }
+    if (auto r = root.object("rings")) {
+        RingModelParams& m = g.rings;
+        m.enabled = r->choice("model", "stochastic", {"stochastic", "constant"}) == "stochastic";
+        m.meanWidth = r->inRange("mean_width", m.meanWidth, 0, 0.1);
+        m.juvenileFactor = r->inRange("juvenile_factor", m.juvenileFactor, 1, 10);
+        m.juvenileYears = r->inRange("juvenile_years", m.juvenileYears, 0.5, 500);
+        m.variation = r->inRange("variation", m.variation, 0, 2);
+        m.autocorrelation = r->inRange("autocorrelation", m.autocorrelation, 0, 0.95);
+        m.climateShare = r->inRange("climate_share", m.climateShare, 0, 1);
+        m.years = static_cast<int>(r->integer("years", 0, 0, 5000));
+        m.seed = static_cast<uint64_t>(r->integer("seed", 1, 0, 1LL << 53));
+        m.climateSeed = static_cast<uint64_t>(r->integer("climate_seed", 1, 0, 1LL << 53));
+        r->finish();
+    }
     if (auto c = root.object("colour")) {
         ColourParams& cp = g.colour;
         cp.earlyWood = readRgb(*c, "early_wood", cp.earlyWood, 0);
@@ -94,7 +108,7 @@ GrainParams loadGrainFile(const std::string& path) { return parseGrain(parseJson
 
 nlohmann::json grainToJson(const GrainParams& g) {
     const ColourParams& c = g.colour;
-    return {
+    nlohmann::json j = {
         {"format", "nenrin-grain"},
         {"radial_speed", g.radialSpeed},
         {"felling_time", g.fellingTime},
@@ -128,6 +142,20 @@ nlohmann::json grainToJson(const GrainParams& g) {
             {"dead_darkening", c.deadKnotDarkening},
             {"dead_rim", c.deadKnotRim}}}}},
     };
+    if (g.rings.enabled) {
+        const RingModelParams& m = g.rings;
+        j["rings"] = {{"model", "stochastic"},
+                      {"mean_width", m.meanWidth},
+                      {"juvenile_factor", m.juvenileFactor},
+                      {"juvenile_years", m.juvenileYears},
+                      {"variation", m.variation},
+                      {"autocorrelation", m.autocorrelation},
+                      {"climate_share", m.climateShare},
+                      {"years", m.years},
+                      {"seed", m.seed},
+                      {"climate_seed", m.climateSeed}};
+    }
+    return j;
 }
 
 }  // namespace nenrin

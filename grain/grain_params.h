@@ -8,6 +8,7 @@
 #include <string>
 
 #include "grain/rgb.h"
+#include "grain/ring_model.h"
 #include "util/vec3.h"
 
 namespace nenrin {
@@ -73,6 +74,8 @@ struct GrainParams {
     TaperParams taper;
     SwayParams sway;
     ColourParams colour;
+    /// Yearly ring widths for skeletons that record none ("rings"; off = constant Sb).
+    RingModelParams rings;
 };
 
 GrainParams loadGrainFile(const std::string& path);

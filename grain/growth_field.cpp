@@ -78,8 +78,17 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
     // Largest radial speed any path can have (taper x direction x jitter): distance bounds.
     speedBound_ = params_.radialSpeed * (1 + params_.taper.nu) * (1 + params_.direction.strength) /
                   (1 - params_.sway.radialJitter);
-    if (!sk.ringWidths().empty()) {
-        radialGrowth_ = RadialGrowth(sk.ringWidths(), params_.radialSpeed);
+    std::vector<double> widths = sk.ringWidths();
+    if (widths.empty() && params_.rings.enabled) {
+        // No recorded rings: the grain's stochastic series, as long as the tree lived.
+        const RingModelParams& m = params_.rings;
+        int years = m.years > 0               ? m.years
+                    : params_.fellingTime > 0 ? static_cast<int>(std::ceil(params_.fellingTime)) + 1
+                                              : 150;
+        widths = generateRingWidths(m, years, m.meanWidth > 0 ? m.meanWidth : params_.radialSpeed);
+    }
+    if (!widths.empty()) {
+        radialGrowth_ = RadialGrowth(widths, params_.radialSpeed);
         // Years faster than Sb shorten thickening times by up to this ratio; the distance
         // bounds pass their years through the age warp, hence the 1/delta power.
         speedBound_ *= std::pow(radialGrowth_.maxSpeedRatio(), 1 / params_.age.delta);

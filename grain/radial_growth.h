@@ -8,7 +8,7 @@
 /// C(T) = C(Ta) + D: T = C^-1(C(Ta) + D). Every other term (gamma, taper, direction, jitter,
 /// age warp) still scales D exactly as before, so the grain's Sb is the unit in which they are
 /// expressed: D = Sb x (their constant-speed thickening years). Before year 0 the first width
-/// applies, after the last year the last width continues.
+/// applies, after the last year the last width continues (the nearest non-zero ones).
 
 #include <vector>
 
@@ -17,7 +17,8 @@ namespace nenrin {
 class RadialGrowth {
 public:
     RadialGrowth() = default;
-    /// `widths` in m/year (all > 0); `referenceSpeed` = the grain's Sb.
+    /// `widths` in m/year (>= 0, some > 0; a 0 is a locally absent ring that merges with the
+    /// next); `referenceSpeed` = the grain's Sb.
     RadialGrowth(const std::vector<double>& widths, double referenceSpeed);
 
     bool empty() const { return widths_.empty(); }
@@ -36,6 +37,7 @@ private:
     std::vector<double> widths_;
     std::vector<double> sums_;  ///< sums_[k] = C(k), k = 0 … years
     double referenceSpeed_ = 1;
+    double firstWidth_ = 0, lastWidth_ = 0;  ///< the first and last non-zero widths
     double maxSpeedRatio_ = 1;
 };
 

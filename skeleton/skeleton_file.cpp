@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <optional>
 
+#include "skeleton/ring_series.h"
 #include "skeleton/segment_geometry.h"
 #include "util/json_reader.h"
 
@@ -16,6 +18,8 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
 /// How far a branch's given start point may lie from its parent chain.
 constexpr double kOnChainTolerance = 1e-3;
+/// m: no tree lays down a ring wider than this in a year.
+constexpr double kMaxRingWidth = 0.1;
 
 struct ChainGeometry {
     std::vector<Vec3> points;
@@ -89,14 +93,36 @@ public:
             d->finish();
         }
         for (auto& b : root.objectList("branches")) parseBranch(b, trunkGeometry, true);
+        if (root.has("ring_widths") && root.has("ring_series"))
+            throw root.error("ring_series", "expected ring_widths or ring_series, not both");
         if (root.has("ring_widths")) {
             std::vector<double> widths = root.numberList("ring_widths");
-            for (size_t i = 0; i < widths.size(); ++i)
-                if (!(widths[i] > 0) || !std::isfinite(widths[i]))
-                    throw root.error(
-                        "ring_widths",
-                        fmt::format("entry {} is {}: expected ring widths > 0 (m)", i, widths[i]));
+            bool anyRing = false;
+            for (size_t i = 0; i < widths.size(); ++i) {
+                // 0 is a locally absent ring: it merges with its neighbour.
+                if (!(widths[i] >= 0) || !std::isfinite(widths[i]) || widths[i] > kMaxRingWidth)
+                    throw root.error("ring_widths",
+                                     fmt::format("entry {} is {}: expected a ring width in m, "
+                                                 "from 0 to {}",
+                                                 i, widths[i], kMaxRingWidth));
+                anyRing |= widths[i] > 0;
+            }
+            if (!widths.empty() && !anyRing)
+                throw root.error("ring_widths", "every ring is 0: expected some growth");
             skeleton_.setRingWidths(std::move(widths));
+        }
+        if (auto series = root.object("ring_series")) {
+            // A measured series from a Tucson .rwl file, relative to this skeleton file.
+            std::string name = series->string("file", "");
+            if (name.empty()) throw series->error("file", "expected the .rwl file's name");
+            std::string id = series->string("series", "");
+            if (id.empty()) throw series->error("series", "expected a series ID of that file");
+            double meanMm = series->inRange("mean_width", 0, 0, 1000 * kMaxRingWidth);
+            series->finish();
+            std::filesystem::path p(name);
+            if (p.is_relative()) p = std::filesystem::path(file_).parent_path() / p;
+            RingSeriesFile rwl = readTucsonRwl(p.string());
+            skeleton_.setRingWidths(ringWidthsMetres(rwl.find(id), meanMm, rwl.path));
         }
         root.object("source");  // provenance, free-form: read by people, not by nenrin
         root.finish();

@@ -87,6 +87,45 @@ TEST_F(TreeCliTest, UnknownFormatAndMissingFilesAreReported) {
                      {".json"});
 }
 
+// `nenrin tree rings`: the measured ring series of data/rings listed, and one given to a
+// skeleton whose layout stays as written.
+TEST_F(TreeCliTest, RingSeriesAreListedAndGivenToASkeleton) {
+    fs::path rwl = kSourceDir / "data/rings/nm580.rwl";
+    RunResult r = run({"tree", "rings", rwl.string(), "--list"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("119 series"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("BCS05B       1370   1990    621"), std::string::npos) << r.out;
+    fs::path tree = out_ / "measured.json";
+    r = run({"tree", "rings", rwl.string(), "--series", "BCS05B", "--skeleton",
+             skeletonScene("straight-trunk.json").string(), "-o", tree.string(), "--mean-width",
+             "2.5"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(readText(tree));
+    ASSERT_EQ(j["ring_widths"].size(), 621u);
+    double sum = 0;
+    for (double w : j["ring_widths"]) sum += w;
+    EXPECT_NEAR(sum / 621, 0.0025, 1e-12);
+    EXPECT_EQ(j["source"]["ring_series"]["series"], "BCS05B");
+    // The written skeleton bakes.
+    r = run({"bake", "slice", "--skeleton", tree.string(), "--plane", "cross", "--at", "0.5",
+             "--size", "0.1x0.1m", "--res", "32x32", "-o", (out_ / "c.exr").string(), "-q"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
+TEST_F(TreeCliTest, BadRingSeriesAreReportedWithoutOutput) {
+    fs::path bad = writeInput("bad.rwl",
+                              "AB01    1990   100   200   300   400   500   600   700   800   "
+                              "900  1000\nAB01    2000   100   -50   999\n");
+    expectInputError(run({"tree", "rings", bad.string(), "--list"}),
+                     {"bad.rwl", "line 2", "negative"});
+    fs::path rwl = kSourceDir / "data/rings/co021.rwl";
+    expectInputError(
+        run({"tree", "rings", rwl.string(), "--series", "NOPE", "--skeleton",
+             skeletonScene("straight-trunk.json").string(), "-o", (out_ / "t.json").string()}),
+        {"co021.rwl", "no series 'NOPE'", "641114"});
+    expectInputError(run({"tree", "rings", rwl.string()}), {"--list"});
+}
+
 }  // namespace
 
 namespace {

@@ -68,7 +68,17 @@ TEST(SkeletonWriter, RejectsBirthTimesThatGoBackwards) {
     EXPECT_THROW(load(R"({"trunk": {"points": [[0,0,0],[0,0,4]], "birth_times": [0, 4]},
         "branches": [{"height": 2, "start_birth_time": 1, "points": [[1,0,2]]}]})"),
                  InputError);
-    EXPECT_THROW(load(R"({"trunk": {"points": [[0,0,0],[0,0,1]]}, "ring_widths": [0.1, 0]})"),
+    // A 0 is a locally absent ring (it merges with the next); negative, huge or all-zero
+    // widths are not rings.
+    EXPECT_NO_THROW(load(R"({"trunk": {"points": [[0,0,0],[0,0,1]]}, "ring_widths": [0.1, 0]})"));
+    EXPECT_THROW(load(R"({"trunk": {"points": [[0,0,0],[0,0,1]]}, "ring_widths": [0.1, -0.001]})"),
+                 InputError);
+    EXPECT_THROW(load(R"({"trunk": {"points": [[0,0,0],[0,0,1]]}, "ring_widths": [0.1, 1e308]})"),
+                 InputError);
+    EXPECT_THROW(load(R"({"trunk": {"points": [[0,0,0],[0,0,1]]}, "ring_widths": [0, 0]})"),
+                 InputError);
+    EXPECT_THROW(load(R"({"trunk": {"points": [[0,0,0],[0,0,1]]}, "ring_widths": [0.001],
+        "ring_series": {"file": "x.rwl", "series": "A"}})"),
                  InputError);
     try {
         load(R"({"trunk": {"points": [[0,0,0],[0,0,4]]},

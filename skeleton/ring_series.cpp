@@ -1,0 +1,264 @@
+#include "skeleton/ring_series.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "util/input_error.h"
+
+namespace nenrin {
+
+namespace {
+
+constexpr long kMarkerHundredths = 999;     // end of a series in 0.01 mm
+constexpr long kMarkerThousandths = -9999;  // end of a series in 0.001 mm
+constexpr size_t kMaxFileBytes = size_t(64) << 20;
+
+std::string trim(std::string_view s) {
+    size_t a = s.find_first_not_of(" \t\r");
+    if (a == std::string_view::npos) return "";
+    size_t b = s.find_last_not_of(" \t\r");
+    return std::string(s.substr(a, b - a + 1));
+}
+
+/// An integer filling a fixed-width field (blanks around it), or nothing.
+std::optional<long> fieldInteger(std::string_view field) {
+    std::string t = trim(field);
+    if (t.empty()) return std::nullopt;
+    long v = 0;
+    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || end != t.data() + t.size()) return std::nullopt;
+    return v;
+}
+
+struct DataLine {
+    std::string id;
+    long year = 0;
+    std::vector<long> values;
+};
+
+/// A data line, or nothing when the line is not one (a header line).
+std::optional<DataLine> parseDataLine(std::string_view line) {
+    if (line.size() < 13) return std::nullopt;
+    DataLine d;
+    d.id = trim(line.substr(0, 8));
+    auto year = fieldInteger(line.substr(8, 4));
+    if (d.id.empty() || !year) return std::nullopt;
+    d.year = *year;
+    for (size_t at = 12; at < line.size(); at += 6) {
+        std::string_view field = line.substr(at, 6);
+        if (trim(field).empty()) {
+            if (!trim(line.substr(at)).empty()) return std::nullopt;  // a gap, then more text
+            break;
+        }
+        auto v = fieldInteger(field);
+        if (!v) return std::nullopt;
+        d.values.push_back(*v);
+    }
+    if (d.values.empty() || d.values.size() > 10) return std::nullopt;
+    return d;
+}
+
+}  // namespace
+
+const RingSeries& RingSeriesFile::find(const std::string& id) const {
+    for (const auto& s : series)
+        if (s.id == id) return s;
+    std::string ids;
+    for (size_t i = 0; i < series.size() && i < 12; ++i) ids += (i ? ", " : "") + series[i].id;
+    if (series.size() > 12) ids += fmt::format(", … ({} in all; --list shows them)", series.size());
+    throw InputError(path, "", fmt::format("no series '{}': expected one of {}", id, ids));
+}
+
+RingSeriesFile readTucsonRwl(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot open the ring-width file");
+    std::string text;
+    char buffer[1 << 16];
+    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+        text.append(buffer, static_cast<size_t>(in.gcount()));
+        if (text.size() > kMaxFileBytes)
+            throw InputError(path, "",
+                             fmt::format("larger than {} MiB: expected a Tucson .rwl text file",
+                                         kMaxFileBytes >> 20));
+    }
+    if (in.bad()) throw InputError(path, "", "cannot read the ring-width file");
+    return parseTucsonRwl(text, path);
+}
+
+RingSeriesFile parseTucsonRwl(const std::string& text, const std::string& path) {
+    RingSeriesFile file;
+    file.path = path;
+    std::set<std::string> ended;
+    RingSeries current;
+    std::vector<long> raw;  // the current series' values as written, marker included
+    bool open = false;
+    long nextYear = 0;
+    int lineNo = 0, lastDataLine = 0;
+
+    auto where = [&](int n) { return fmt::format("line {}", n); };
+    auto close = [&](int n) {
+        // The series' last value is its end marker; it sets the unit of the whole series.
+        long marker = raw.empty() ? 0 : raw.back();
+        if (marker == kMarkerThousandths)
+            current.unitMm = 0.001;
+        else if (marker == kMarkerHundredths)
+            current.unitMm = 0.01;
+        else
+            throw InputError(path, where(n),
+                             fmt::format("series '{}' ends without its end marker: expected 999 "
+                                         "(0.01 mm) or -9999 (0.001 mm) after year {}",
+                                         current.id, nextYear - 1));
+        raw.pop_back();
+        if (raw.empty())
+            throw InputError(
+                path, where(n),
+                fmt::format("series '{}' has no widths before its end marker", current.id));
+        for (long v : raw) current.widthsMm.push_back(static_cast<double>(v) * current.unitMm);
+        ended.insert(current.id);
+        file.series.push_back(std::move(current));
+        current = RingSeries{};
+        raw.clear();
+        open = false;
+    };
+
+    std::istringstream lines(text);
+    std::string line;
+    while (std::getline(lines, line)) {
+        ++lineNo;
+        if (line.find('\0') != std::string::npos)
+            throw InputError(path, where(lineNo), "holds a NUL byte: expected a text file");
+        if (trim(line).empty()) continue;
+        auto d = parseDataLine(line);
+        if (!d) {
+            if (lastDataLine == 0 && file.header.size() < 8) {
+                file.header.push_back(trim(line));
+                continue;
+            }
+            throw InputError(path, where(lineNo),
+                             "expected a data line: a series ID (columns 1-8), a year (columns "
+                             "9-12) and up to ten integer widths in 6-character fields");
+        }
+        if (open && d->id != current.id) close(lastDataLine);
+        if (!open) {
+            if (ended.count(d->id))
+                throw InputError(path, where(lineNo),
+                                 fmt::format("series '{}' starts again after its end marker: "
+                                             "expected each series once",
+                                             d->id));
+            current.id = d->id;
+            current.firstYear = static_cast<int>(d->year);
+            current.firstLine = lineNo;
+            nextYear = d->year;
+            open = true;
+        }
+        if (d->year != nextYear)
+            throw InputError(path, where(lineNo),
+                             fmt::format("series '{}' jumps from year {} to {}: expected the "
+                                         "line to start at year {}",
+                                         d->id, nextYear - 1, d->year, nextYear));
+        if (d->year != current.firstYear && d->year % 10 != 0)
+            throw InputError(path, where(lineNo),
+                             fmt::format("series '{}' continues at year {}: expected a line to "
+                                         "start at a decade year",
+                                         d->id, d->year));
+        for (size_t i = 0; i < d->values.size(); ++i) {
+            long v = d->values[i];
+            bool last = i + 1 == d->values.size();
+            if (v == kMarkerThousandths && !last)
+                throw InputError(
+                    path, where(lineNo),
+                    fmt::format("series '{}': values after the end marker -9999", d->id));
+            if (v < 0 && v != kMarkerThousandths)
+                throw InputError(path, where(lineNo),
+                                 fmt::format("series '{}', year {}: width {} is negative: "
+                                             "expected a width >= 0 or an end marker",
+                                             d->id, nextYear + static_cast<long>(i), v));
+            raw.push_back(v);
+        }
+        nextYear += static_cast<long>(d->values.size());
+        lastDataLine = lineNo;
+        if (raw.back() == kMarkerThousandths) {
+            close(lineNo);
+            continue;
+        }
+        // A line that stops before its decade's end closes the series (999 is then the marker).
+        if ((nextYear % 10 + 10) % 10 != 0) close(lineNo);
+    }
+    if (open) close(lastDataLine);
+    if (file.series.empty())
+        throw InputError(path, "", "holds no ring-width series: expected Tucson .rwl data lines");
+    return file;
+}
+
+std::vector<double> latewoodShares(const RingSeries& e, const RingSeriesFile& latewood) {
+    const RingSeries& l = latewood.find(e.id);
+    if (l.lastYear() < e.firstYear || l.firstYear > e.lastYear())
+        throw InputError(latewood.path, fmt::format("line {}", l.firstLine),
+                         fmt::format("series '{}' covers {}-{}: expected years that overlap "
+                                     "the earlywood series' {}-{}",
+                                     l.id, l.firstYear, l.lastYear(), e.firstYear, e.lastYear()));
+    // Measured cores do not always have both parts for every year (nm580l is shorter than
+    // nm580e for some cores): years without a latewood value, or with e + l = 0, get the
+    // series' mean share.
+    std::vector<double> shares(e.widthsMm.size(), -1);
+    double sum = 0;
+    int count = 0;
+    for (size_t i = 0; i < shares.size(); ++i) {
+        int year = e.firstYear + static_cast<int>(i);
+        if (year < l.firstYear || year > l.lastYear()) continue;
+        double late = l.widthsMm[static_cast<size_t>(year - l.firstYear)];
+        double total = e.widthsMm[i] + late;
+        if (total > 0) {
+            shares[i] = late / total;
+            sum += shares[i], ++count;
+        }
+    }
+    double mean = count ? sum / count : 0.3;
+    for (double& s : shares)
+        if (s < 0) s = mean;
+    return shares;
+}
+
+RingStatistics ringStatistics(const std::vector<double>& w) {
+    RingStatistics r;
+    size_t n = w.size();
+    if (n < 2) return r;
+    for (double x : w) r.mean += x;
+    r.mean /= double(n);
+    double var = 0, cov = 0, sens = 0;
+    int pairs = 0;
+    for (size_t i = 0; i < n; ++i) {
+        var += (w[i] - r.mean) * (w[i] - r.mean);
+        if (i + 1 < n) {
+            cov += (w[i] - r.mean) * (w[i + 1] - r.mean);
+            double s = w[i] + w[i + 1];
+            if (s > 0) sens += std::abs(2 * (w[i + 1] - w[i]) / s), ++pairs;
+        }
+    }
+    r.cv = r.mean > 0 ? std::sqrt(var / double(n - 1)) / r.mean : 0;
+    r.autocorrelation = var > 0 ? cov / var : 0;
+    r.meanSensitivity = pairs ? sens / pairs : 0;
+    return r;
+}
+
+std::vector<double> ringWidthsMetres(const RingSeries& s, double meanWidthMm,
+                                     const std::string& file) {
+    double mean = 0;
+    for (double w : s.widthsMm) mean += w;
+    mean /= double(s.widthsMm.size());
+    if (!(mean > 0))
+        throw InputError(file, "", fmt::format("series '{}' has only zero-width rings", s.id));
+    double scale = meanWidthMm > 0 ? meanWidthMm / mean : 1.0;
+    std::vector<double> metres;
+    metres.reserve(s.widthsMm.size());
+    for (double w : s.widthsMm) metres.push_back(w * scale * 1e-3);
+    return metres;
+}
+
+}  // namespace nenrin

@@ -1,0 +1,157 @@
+#include "grain/ring_model.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "grain/growth_field.h"
+#include "skeleton/ring_series.h"
+#include "skeleton/skeleton_file.h"
+#include "tests/test_trees.h"
+
+namespace nenrin {
+namespace {
+
+RingModelParams stochastic(uint64_t seed, uint64_t climate = 1) {
+    RingModelParams p;
+    p.enabled = true;
+    p.seed = seed;
+    p.climateSeed = climate;
+    return p;
+}
+
+// The targets of docs/grain-format.md, from measured cores (data/rings: CV 0.4-0.8,
+// lag-1 autocorrelation 0.5-0.75, mean sensitivity 0.2-0.6), checked over 200 trees.
+TEST(RingModel, SeriesHaveTheStatisticsOfMeasuredCores) {
+    double cv = 0, ar = 0, ms = 0;
+    const int trees = 200;
+    for (int seed = 1; seed <= trees; ++seed) {
+        std::vector<double> w = generateRingWidths(stochastic(seed, seed), 120, 0.003);
+        RingStatistics s = ringStatistics(w);
+        EXPECT_NEAR(s.mean, 0.003, 1e-12) << seed;  // the mean is exact: the log keeps its size
+        for (double x : w) ASSERT_GT(x, 0);
+        EXPECT_GE(s.cv, 0.2) << seed;
+        EXPECT_GE(s.autocorrelation, 0.3) << seed;
+        EXPECT_LE(s.autocorrelation, 0.9) << seed;
+        cv += s.cv / trees, ar += s.autocorrelation / trees, ms += s.meanSensitivity / trees;
+    }
+    EXPECT_GT(cv, 0.4);
+    EXPECT_LT(cv, 0.8);
+    EXPECT_GT(ar, 0.5);
+    EXPECT_LT(ar, 0.75);
+    EXPECT_GT(ms, 0.2);
+    EXPECT_LT(ms, 0.6);
+}
+
+TEST(RingModel, JuvenileRingsAreWider) {
+    double inner = 0, outer = 0;
+    for (int seed = 1; seed <= 50; ++seed) {
+        std::vector<double> w = generateRingWidths(stochastic(seed, seed), 100, 0.003);
+        for (int k = 0; k < 10; ++k) inner += w[size_t(k)];
+        for (int k = 80; k < 90; ++k) outer += w[size_t(k)];
+    }
+    EXPECT_GT(inner / outer, 1.6);  // J = 2.2 at the pith, decaying over 12 years
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> la, lb;
+    for (size_t i = 0; i < a.size(); ++i)
+        la.push_back(std::log(a[i])), lb.push_back(std::log(b[i]));
+    double ma = 0, mb = 0;
+    for (size_t i = 0; i < la.size(); ++i) ma += la[i], mb += lb[i];
+    ma /= double(la.size()), mb /= double(lb.size());
+    double sab = 0, saa = 0, sbb = 0;
+    for (size_t i = 0; i < la.size(); ++i) {
+        sab += (la[i] - ma) * (lb[i] - mb);
+        saa += (la[i] - ma) * (la[i] - ma);
+        sbb += (lb[i] - mb) * (lb[i] - mb);
+    }
+    return sab / std::sqrt(saa * sbb);
+}
+
+// Boards of one stand share its climate; trees of other stands do not.
+TEST(RingModel, OneClimateCorrelatesTreesOfAStand) {
+    double same = 0, other = 0;
+    const int pairs = 40;
+    for (int i = 0; i < pairs; ++i) {
+        RingModelParams a = stochastic(100 + i, 7), b = stochastic(500 + i, 7),
+                        c = stochastic(900 + i, 8 + i);
+        a.juvenileFactor = b.juvenileFactor = c.juvenileFactor = 1;  // the signal alone
+        std::vector<double> wa = generateRingWidths(a, 200, 0.003);
+        std::vector<double> wb = generateRingWidths(b, 200, 0.003);
+        std::vector<double> wc = generateRingWidths(c, 200, 0.003);
+        same += correlation(wa, wb) / pairs;
+        other += correlation(wa, wc) / pairs;
+        EXPECT_NE(wa, wb);
+    }
+    EXPECT_NEAR(same, 0.5, 0.1);  // climate_share 0.5
+    EXPECT_NEAR(other, 0.0, 0.1);
+}
+
+TEST(RingModel, SameSeedSameBits) {
+    EXPECT_EQ(generateRingWidths(stochastic(3), 80, 0.002),
+              generateRingWidths(stochastic(3), 80, 0.002));
+    EXPECT_NE(generateRingWidths(stochastic(3), 80, 0.002),
+              generateRingWidths(stochastic(4), 80, 0.002));
+}
+
+double ringRadius(const GrowthField& f, Vec3 centre, Vec3 dir, double years) {
+    double lo = 0, hi = 1;
+    for (int i = 0; i < 200; ++i) {
+        double mid = 0.5 * (lo + hi);
+        (f.evaluate(centre + dir * mid).T < years ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+// A grain with the stochastic model on a tree without rings of its own: ring k of a straight
+// trunk at its base lies at the cumulative width of the generated years.
+TEST(RingModel, DrivesTheFieldOfTreesWithoutRings) {
+    GrainParams g;
+    g.radialSpeed = 0.003;
+    g.fellingTime = 60;
+    g.rings = stochastic(5);
+    Skeleton trunk = test::straightTrunk(10, 0.5);
+    SkeletonIndex index(trunk);
+    GrowthField f(index, g);
+    std::vector<double> w = generateRingWidths(g.rings, 61, 0.003);
+    double radius = 0;
+    for (int k = 1; k <= 55; ++k) {
+        radius += w[size_t(k - 1)];
+        EXPECT_NEAR(ringRadius(f, {0, 0, 0}, {1, 0, 0}, k), radius, 1e-6) << k;
+    }
+}
+
+// A measured core as the tree's rings (the skeleton key "ring_series"): ring k's radius is
+// the cumulative series, and a locally absent ring merges two boundaries instead of a NaN.
+TEST(RingModel, MeasuredSeriesGiveRingRadiiAndMergedRings) {
+    const std::string dir = testing::TempDir();
+    const std::string path = dir + "/measured-trunk.json";
+    std::ofstream(path) << R"({"elongation_speed": 0.5,
+        "trunk": {"points": [[0, 0, 0], [0, 0, 10]]},
+        "ring_series": {"file": ")"
+                        << NENRIN_SOURCE_DIR
+                        << R"(/data/rings/co021.rwl", "series": "641114", "mean_width": 2}})";
+    Skeleton sk = loadSkeletonFile(path);
+    RingSeriesFile rwl = readTucsonRwl(std::string(NENRIN_SOURCE_DIR) + "/data/rings/co021.rwl");
+    std::vector<double> w = ringWidthsMetres(rwl.find("641114"), 2, "co021");
+    ASSERT_EQ(sk.ringWidths(), w);
+    GrainParams g;
+    g.radialSpeed = 0.002;
+    SkeletonIndex index(sk);
+    GrowthField f(index, g);
+    double radius = 0;
+    int zeros = 0;
+    for (int k = 1; k <= 300; ++k) {
+        radius += w[size_t(k - 1)];
+        zeros += w[size_t(k - 1)] == 0;
+        EXPECT_NEAR(ringRadius(f, {0, 0, 0}, {0, 1, 0}, k), radius, 1e-6) << k;
+    }
+    EXPECT_GT(zeros, 0);  // co021 641114 has absent rings in its first 300 years
+    for (double r = 0; r < radius; r += radius / 997)
+        ASSERT_TRUE(std::isfinite(f.evaluate({r, 0, 0}).T)) << r;
+}
+
+}  // namespace
+}  // namespace nenrin
