@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "grain/growth_field.h"
+#include "tests/grain/ring_radius.h"
 #include "tests/test_trees.h"
 
 namespace nenrin {
@@ -10,14 +11,7 @@ namespace {
 
 constexpr double kSa = 0.5, kSb = 0.004;
 
-double ringRadius(const GrowthField& f, Vec3 centre, Vec3 dir, double years) {
-    double lo = 0, hi = 1;
-    for (int i = 0; i < 200; ++i) {
-        double mid = 0.5 * (lo + hi);
-        (f.evaluate(centre + dir * mid).T < years ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
+using test::ringRadius;
 
 TEST(RadialGrowth, CumulativeAndInverseAgree) {
     RadialGrowth g({0.004, 0.001, 0.006}, 0.004);

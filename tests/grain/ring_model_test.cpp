@@ -8,6 +8,7 @@
 #include "grain/growth_field.h"
 #include "skeleton/ring_series.h"
 #include "skeleton/skeleton_file.h"
+#include "tests/grain/ring_radius.h"
 #include "tests/test_trees.h"
 
 namespace nenrin {
@@ -96,14 +97,7 @@ TEST(RingModel, SameSeedSameBits) {
               generateRingWidths(stochastic(4), 80, 0.002));
 }
 
-double ringRadius(const GrowthField& f, Vec3 centre, Vec3 dir, double years) {
-    double lo = 0, hi = 1;
-    for (int i = 0; i < 200; ++i) {
-        double mid = 0.5 * (lo + hi);
-        (f.evaluate(centre + dir * mid).T < years ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
+using test::ringRadius;
 
 // A grain with the stochastic model on a tree without rings of its own: ring k of a straight
 // trunk at its base lies at the cumulative width of the generated years.
