@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 
 struct ImportOptions {
     std::string input, output, format = "auto";
-    double rings = 60, heightGrowth = 0, branchGrowth = 0.2, knotGamma = 0.25;
+    double rings = 60, heightGrowth = 0, branchGrowth = 0.2, knotGamma = 0.125;
     double elongationSpeed = 0.5;
 };
 
@@ -179,7 +179,7 @@ CLI::App* addTreeCommands(CLI::App& app) {
     imp->add_option("--knot-gamma", io->knotGamma,
                     "Gran_1: a knot's radial speed relative to the stem")
         ->check(CLI::PositiveNumber)
-        ->default_val(0.25);
+        ->default_val(0.125);
     imp->add_option("--elongation-speed", io->elongationSpeed,
                     "QSM: m/year along every axis (QSMs carry no time)")
         ->check(CLI::PositiveNumber)

@@ -96,7 +96,14 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
             cp.knotDarkening = k->inRange("darkening", cp.knotDarkening, 0, 1);
             cp.deadKnotDarkening = k->inRange("dead_darkening", cp.deadKnotDarkening, 0, 1);
             cp.deadKnotRim = k->inRange("dead_rim", cp.deadKnotRim, 0, 1);
+            cp.knotTint = readRgb(*k, "tint", cp.knotTint, 0);
+            cp.deadKnotTint = readRgb(*k, "dead_tint", cp.deadKnotTint, 0);
             k->finish();
+        }
+        if (auto e = c->object("end_grain")) {
+            cp.endGrainDarkening = e->inRange("darkening", cp.endGrainDarkening, 0, 0.9);
+            cp.endGrainRedness = e->inRange("redness", cp.endGrainRedness, 0, 1);
+            e->finish();
         }
         c->finish();
     }
@@ -140,7 +147,10 @@ nlohmann::json grainToJson(const GrainParams& g) {
           {"knots",
            {{"darkening", c.knotDarkening},
             {"dead_darkening", c.deadKnotDarkening},
-            {"dead_rim", c.deadKnotRim}}}}},
+            {"dead_rim", c.deadKnotRim},
+            {"tint", rgbJson(c.knotTint)},
+            {"dead_tint", rgbJson(c.deadKnotTint)}}},
+          {"end_grain", {{"darkening", c.endGrainDarkening}, {"redness", c.endGrainRedness}}}}},
     };
     if (g.rings.enabled) {
         const RingModelParams& m = g.rings;

@@ -61,6 +61,16 @@ struct ColourParams {
     double knotDarkening = 0.25;      ///< relative darkening inside living knots
     double deadKnotDarkening = 0.45;  ///< relative darkening inside dead knots
     double deadKnotRim = 0.5;         ///< relative darkening of the bark rim around dead knots
+    /// Knot wood is compression wood, often resinous: its own hue, a filter on the wood colour
+    /// inside living and dead knots (white = the stem's hue, only darkened).
+    Rgb knotTint{1, 1, 1};
+    Rgb deadKnotTint{1, 1, 1};
+    /// End grain measures darker and redder than side grain (Hirata et al. 2020, 60 species):
+    /// open cell ends trap light. At a surface cut across the fibre the albedo's green and
+    /// blue are multiplied by 1 - endGrainDarkening, its red by 1 - endGrainDarkening x
+    /// (1 - endGrainRedness); faces in between by the weight |cos(normal, fibre)|^4.
+    double endGrainDarkening = 0.3;
+    double endGrainRedness = 0.3;
 };
 
 struct GrainParams {

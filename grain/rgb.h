@@ -13,4 +13,7 @@ struct Rgb {
 
 constexpr Rgb mix(const Rgb& a, const Rgb& b, double t) { return a + (b - a) * t; }
 
+/// Component-wise product (a filter applied to a colour).
+constexpr Rgb multiply(const Rgb& a, const Rgb& b) { return {a.r * b.r, a.g * b.g, a.b * b.b}; }
+
 }  // namespace nenrin

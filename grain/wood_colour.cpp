@@ -20,8 +20,21 @@ Rgb woodColour(const GrowthSample& s, const Vec3& treePoint, const ColourParams&
     double brightness = 1 + microWeight * c.microAmplitude *
                                 microStructure(treePoint, c.microCellSize, c.microSeed);
     brightness *= 1 - knotEmphasis(s.knot, s.deadKnot, c);
+    // Knot wood's own hue, where the knot's branch wins the blend (as knotEmphasis darkens).
+    double inside = smoothstep(0.45, 0.75, s.knot);
+    if (inside > 0) {
+        double deadFraction = std::clamp(s.deadKnot / s.knot, 0.0, 1.0);
+        colour = multiply(colour,
+                          mix(Rgb{1, 1, 1}, mix(c.knotTint, c.deadKnotTint, deadFraction), inside));
+    }
     colour = colour * brightness;
     return {std::max(colour.r, 0.0), std::max(colour.g, 0.0), std::max(colour.b, 0.0)};
+}
+
+Rgb endGrainAlbedo(const Rgb& albedo, double cosFibre, const ColourParams& c) {
+    double c2 = cosFibre * cosFibre;
+    double d = c.endGrainDarkening * c2 * c2;
+    return {albedo.r * (1 - d * (1 - c.endGrainRedness)), albedo.g * (1 - d), albedo.b * (1 - d)};
 }
 
 }  // namespace nenrin

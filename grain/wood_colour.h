@@ -15,4 +15,8 @@ Rgb woodColour(const GrowthSample& sample, const Vec3& treePoint, const ColourPa
 Rgb woodColour(const GrowthSample& sample, const Vec3& treePoint, const ColourParams& colour,
                double lateWood, double microWeight);
 
+/// The end-grain term: `albedo` seen on a face whose normal makes |cos| = `cosFibre` with the
+/// fibre (1 = cut straight across it, 0 = along it).
+Rgb endGrainAlbedo(const Rgb& albedo, double cosFibre, const ColourParams& colour);
+
 }  // namespace nenrin

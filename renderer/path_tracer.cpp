@@ -38,7 +38,6 @@ double randomAt(uint64_t seed, uint64_t pixel, uint64_t sample, uint64_t dimensi
 }
 
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
-Rgb multiply(const Rgb& a, const Rgb& b) { return {a.r * b.r, a.g * b.g, a.b * b.b}; }
 bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
 
 double powerHeuristic(double a, double b) {
@@ -426,7 +425,8 @@ void TileRenderer::shadeWood(std::vector<PathState>& paths,
             };
             CameraRay c = cameraRay(p, pixelIds_[p.pixel]);
             return {treeFromWorld.vector(onPlane(c.rayX) - p.hit.position),
-                    treeFromWorld.vector(onPlane(c.rayY) - p.hit.position)};
+                    treeFromWorld.vector(onPlane(c.rayY) - p.hit.position), 0,
+                    treeFromWorld.vector(n0)};
         };
         for (size_t k = 0; k < n; ++k) {
             const PathState& p = paths[woodPaths[order[begin + k]]];
@@ -460,8 +460,9 @@ void TileRenderer::shadeWood(std::vector<PathState>& paths,
                     if (slotOfQuadrant[q] < 0) {
                         slotOfQuadrant[q] = static_cast<int32_t>(refinePoints_.size());
                         refinePoints_.push_back({0, 0, 0});
-                        refineFootprints_.push_back(
-                            {woodFootprints_[g0].dpdx * half, woodFootprints_[g0].dpdy * half, 0});
+                        refineFootprints_.push_back({woodFootprints_[g0].dpdx * half,
+                                                     woodFootprints_[g0].dpdy * half, 0,
+                                                     woodFootprints_[g0].normal});
                     }
                     Vec3& sum = refinePoints_[static_cast<size_t>(slotOfQuadrant[q])];
                     sum = sum + woodPoints_[k];
@@ -546,8 +547,9 @@ void TileRenderer::shadeCameraWood(const WoodShader& shader, size_t n) {
         if (k == 0 || batchPixel_[k] != batchPixel_[k - 1]) {
             groupStart_.push_back(static_cast<uint32_t>(k));
             groupPoints_.push_back({0, 0, 0});
-            groupFootprints_.push_back(
-                {woodFootprints_[k].dpdx * widen, woodFootprints_[k].dpdy * widen, 0});
+            groupFootprints_.push_back({woodFootprints_[k].dpdx * widen,
+                                        woodFootprints_[k].dpdy * widen, 0,
+                                        woodFootprints_[k].normal});
         }
         groupPoints_.back() = groupPoints_.back() + woodPoints_[k];
     }

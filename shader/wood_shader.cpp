@@ -106,6 +106,9 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         double g2 = lengthSquared(o.gradientT);
         Vec3 along = g2 > 0 ? axis - o.gradientT * (dot(axis, o.gradientT) / g2) : axis;
         o.fibre = lengthSquared(along) > 1e-12 ? normalize(along) : axis;
+        if (!footprints.empty() && !outside && lengthSquared(footprints[i].normal) > 0)
+            o.albedo = endGrainAlbedo(
+                o.albedo, std::abs(dot(normalize(footprints[i].normal), o.fibre)), colour);
 
         double slope = rings_.filteredSlope(s.T, std::max(width, kReliefMinWidth));
         // Past a footprint of a ring or so the relief averages out: fade it with the filter.

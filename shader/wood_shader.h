@@ -34,6 +34,9 @@ struct WoodSample {
 struct SurfaceFootprint {
     Vec3 dpdx, dpdy;
     double diameter = 0;  ///< m
+    /// The surface normal (tree space, any length), for the end-grain term; zero = unknown
+    /// (no end-grain term).
+    Vec3 normal;
 };
 
 struct WoodSurfaceSample {

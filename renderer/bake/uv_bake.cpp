@@ -114,7 +114,8 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
                 tangents.push_back(tangent);
                 bitangents.push_back(bitangent);
                 footprints.push_back({treeFromObject.vector(frames[t].dpdu / options.width),
-                                      treeFromObject.vector(frames[t].dpdv / options.height)});
+                                      treeFromObject.vector(frames[t].dpdv / options.height), 0,
+                                      treeFromObject.vector(nrm)});
             }
         }
         std::vector<WoodSurfaceSample> samples(points.size());

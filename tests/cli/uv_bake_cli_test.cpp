@@ -159,7 +159,7 @@ TEST_F(UvBakeCliTest, RenderOfTheBakedCubeMatchesTheDirectRender) {
         text.replace(at, from.size(), to);
     };
     replace(R"("type": "wood", "skeleton": "../../../scenes/skeletons/conifer.json",
-      "grain": "../../../scenes/grain/spruce.json", "finish": "matte")",
+      "grain": "../grain/uv-cube-grain.json", "finish": "matte")",
             fmt::format(R"("type": "textured", "base_colour": "{}", "normal": "{}",
       "fibre": "{}", "finish": "matte")",
                         (maps / "basecolor.exr").string(), (maps / "normal.exr").string(),

@@ -121,8 +121,8 @@ Points board(float offset, float half, float bottom, float top, int nx, int nz) 
 /// The conifer cut at 1.13 m through a whorl of dead knots (out to where the felled log ends),
 /// and a board 45 mm off the pith past the knot of the branch that points towards +y.
 Points coniferSamples() {
-    Points p = crossSection(1.13f, 0.15f, 24);
-    Points b = board(0.045f, 0.1f, 0.9f, 1.5f, 16, 32);
+    Points p = crossSection(1.13f, 0.15f, 48);
+    Points b = board(0.045f, 0.1f, 0.9f, 1.5f, 32, 64);
     p.insert(p.end(), b.begin(), b.end());
     return p;
 }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "grain/cielab.h"
 #include "grain/growth_terms.h"
 #include "shader/ring_profile.h"
 #include "shader/wood_shader.h"
@@ -121,6 +122,28 @@ TEST_F(StraightTrunkSurface, IsotropicFootprintDiameterFiltersLikeDifferentials)
     shader_->evaluateSurface(std::span(&p, 1), std::span(&along, 1), a, scratch);
     shader_->evaluateSurface(std::span(&p, 1), std::span(&iso, 1), b, scratch);
     EXPECT_NEAR(a[0].ringFilterWidth, b[0].ringFilterWidth, 0.01 * b[0].ringFilterWidth);
+}
+
+// End grain measures darker and redder than side grain (Hirata et al. 2020): the same wood
+// seen on a cross cut (normal along the fibre) against a flat-sawn face (normal across it).
+TEST_F(StraightTrunkSurface, EndGrainIsDarkerAndRedderThanSideGrain) {
+    std::vector<Vec3> points{{0.05, 0.02, 1}};
+    const Vec3 up{0, 0, 1}, side{1, 0, 0}, oblique = normalize(Vec3{1, 0, 1});
+    auto albedoWith = [&](Vec3 normal) {
+        std::vector<SurfaceFootprint> f{{{}, {}, 0.0001, normal}};
+        std::vector<WoodSurfaceSample> out(1);
+        WoodScratch scratch;
+        shader_->evaluateSurface(points, f, out, scratch);
+        return out[0].albedo;
+    };
+    Lab end = labFromLinearSrgb(albedoWith(up)), flat = labFromLinearSrgb(albedoWith(side));
+    Lab unknown = labFromLinearSrgb(albedoWith({}));
+    Lab between = labFromLinearSrgb(albedoWith(oblique));
+    EXPECT_LT(end.L, flat.L - 5);               // about 8-10 L* darker at the defaults
+    EXPECT_GT(end.a - end.b, flat.a - flat.b);  // redder: hue towards a*
+    EXPECT_NEAR(flat.L, unknown.L, 1e-6);       // side grain and no normal: (almost) no term
+    EXPECT_GT(between.L, end.L);                // 45 degrees: a quarter of the term
+    EXPECT_LT(between.L, flat.L);
 }
 
 TEST(WoodSurface, FibresBendAroundAKnot) {

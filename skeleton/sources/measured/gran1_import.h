@@ -19,7 +19,7 @@ struct Gran1Options {
     /// m/year; 0 = derived from the bark's taper (ring width / taper), clamped to 0.1 … 1.
     double heightGrowth = 0;
     double branchGrowth = 0.2;  ///< m/year: how fast a branch tip moves out from the pith
-    double knotGamma = 0.25;    ///< a knot's radial speed relative to the stem's (eq. 3')
+    double knotGamma = 0.125;   ///< a knot's radial speed relative to the stem's (eq. 3')
     double diebackExponent = 1;
 };
 
