@@ -1,7 +1,7 @@
 // Render benchmarks (issue 3): the default scene (scenes/glulam-beam.json at its own
 // resolution and spp) and a 512 x 512 frame filled with a box of wood at 16 spp, each on 1 and
-// 2 threads. Counters: rays/s (camera, bounce and shadow rays) and camera_rays/s; the
-// benchmark's time is the wall time of one render.
+// 2 threads; the box also with its anatomy off. Counters: rays/s (camera, bounce and shadow rays)
+// and camera_rays/s; the benchmark's time is the wall time of one render.
 
 #include <benchmark/benchmark.h>
 
@@ -41,6 +41,11 @@ void BM_RenderWoodBox512(benchmark::State& state) {
     renderBenchmark(state, kSource + "/bench/scenes/wood-box-512.json");
 }
 
+// The same box with its preset's anatomy off: what fibres, rays and resin canals cost.
+void BM_RenderWoodBox512AnatomyOff(benchmark::State& state) {
+    renderBenchmark(state, kSource + "/bench/scenes/wood-box-512-anatomy-off.json");
+}
+
 BENCHMARK(BM_RenderDefaultScene)
     ->Arg(1)
     ->Arg(2)
@@ -48,6 +53,12 @@ BENCHMARK(BM_RenderDefaultScene)
     ->UseRealTime()
     ->Unit(benchmark::kSecond);
 BENCHMARK(BM_RenderWoodBox512)
+    ->Arg(1)
+    ->Arg(2)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
+BENCHMARK(BM_RenderWoodBox512AnatomyOff)
     ->Arg(1)
     ->Arg(2)
     ->Iterations(1)

@@ -26,6 +26,8 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
     JsonReader root(json, file);
     root.string("description", "");
     root.choice("format", "nenrin-grain", {"nenrin-grain"});
+    root.object("reference");  // what a preset was made from (colour measurements, sources):
+                               // read by people and tests, not by nenrin
     g.radialSpeed = root.positive("radial_speed", g.radialSpeed);
     g.fellingTime = root.nonNegative("felling_time", g.fellingTime);
     if (auto j = root.object("junction")) {
@@ -70,11 +72,52 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
         m.climateSeed = static_cast<uint64_t>(r->integer("climate_seed", 1, 0, 1LL << 53));
         r->finish();
     }
+    if (auto a = root.object("anatomy")) {
+        AnatomyParams& m = g.anatomy;
+        m.enabled = a->boolean("enabled", true);
+        m.seed = static_cast<uint64_t>(a->integer("seed", 1, 0, 1LL << 53));
+        if (auto f = a->object("fibres")) {
+            m.fibreAmplitude = f->inRange("amplitude", m.fibreAmplitude, 0, 0.5);
+            m.fibreWidth = f->inRange("width", m.fibreWidth, 1e-5, 0.01);
+            m.fibreLength = f->inRange("length", m.fibreLength, 1e-4, 1);
+            f->finish();
+        }
+        if (auto v = a->object("pores")) {
+            std::string kind = v->choice("kind", "none", {"none", "ring-porous", "diffuse-porous"});
+            m.pores = kind == "ring-porous"      ? PoreKind::RingPorous
+                      : kind == "diffuse-porous" ? PoreKind::DiffusePorous
+                                                 : PoreKind::None;
+            m.poreDiameter = v->inRange("diameter", m.poreDiameter, 1e-5, 0.002);
+            m.poreSpacing = v->inRange("spacing", m.poreSpacing, 2e-5, 0.01);
+            m.poreLength = v->inRange("length", m.poreLength, 1e-4, 0.1);
+            m.poreBand = v->inRange("band", m.poreBand, 0.01, 1);
+            m.poreDarkening = v->inRange("darkening", m.poreDarkening, 0, 1);
+            m.poreDepth = v->inRange("depth", m.poreDepth, 0, 2);
+            v->finish();
+        }
+        if (auto r = a->object("rays")) {
+            m.raySpacing = r->inRange("spacing", m.raySpacing, 1e-4, 0.05);
+            m.rayWidth = r->inRange("width", m.rayWidth, 0, 0.005);
+            m.rayHeight = r->inRange("height", m.rayHeight, 1e-5, 0.1);
+            m.rayContrast = r->inRange("contrast", m.rayContrast, -0.9, 1);
+            r->finish();
+        }
+        if (auto r = a->object("resin_canals")) {
+            m.resinSpacing = r->inRange("spacing", m.resinSpacing, 0, 0.05);
+            m.resinDiameter = r->inRange("diameter", m.resinDiameter, 1e-5, 0.002);
+            m.resinDarkening = r->inRange("darkening", m.resinDarkening, 0, 1);
+            r->finish();
+        }
+        a->finish();
+    }
     if (auto c = root.object("colour")) {
         ColourParams& cp = g.colour;
         cp.earlyWood = readRgb(*c, "early_wood", cp.earlyWood, 0);
         cp.lateWood = readRgb(*c, "late_wood", cp.lateWood, 0);
         cp.lateWoodExponent = c->inRange("late_wood_exponent", cp.lateWoodExponent, 0.1, 100);
+        cp.lateWoodShare = c->inRange("late_wood_share", cp.lateWoodShare, 0, 0.9);
+        cp.lateWoodTransition =
+            c->inRange("late_wood_transition", cp.lateWoodTransition, 0.005, 0.5);
         if (auto h = c->object("heartwood")) {
             cp.heartwood = h->boolean("enabled", cp.heartwood);
             cp.heartwoodStart = h->nonNegative("start", cp.heartwoodStart);
@@ -134,6 +177,8 @@ nlohmann::json grainToJson(const GrainParams& g) {
          {{"early_wood", rgbJson(c.earlyWood)},
           {"late_wood", rgbJson(c.lateWood)},
           {"late_wood_exponent", c.lateWoodExponent},
+          {"late_wood_share", c.lateWoodShare},
+          {"late_wood_transition", c.lateWoodTransition},
           {"heartwood",
            {{"enabled", c.heartwood},
             {"start", c.heartwoodStart},
@@ -164,6 +209,32 @@ nlohmann::json grainToJson(const GrainParams& g) {
                       {"years", m.years},
                       {"seed", m.seed},
                       {"climate_seed", m.climateSeed}};
+    }
+    if (g.anatomy.enabled) {
+        const AnatomyParams& m = g.anatomy;
+        const char* kinds[] = {"none", "ring-porous", "diffuse-porous"};
+        j["anatomy"] = {
+            {"enabled", true},
+            {"seed", m.seed},
+            {"fibres",
+             {{"amplitude", m.fibreAmplitude}, {"width", m.fibreWidth}, {"length", m.fibreLength}}},
+            {"pores",
+             {{"kind", kinds[static_cast<int>(m.pores)]},
+              {"diameter", m.poreDiameter},
+              {"spacing", m.poreSpacing},
+              {"length", m.poreLength},
+              {"band", m.poreBand},
+              {"darkening", m.poreDarkening},
+              {"depth", m.poreDepth}}},
+            {"rays",
+             {{"spacing", m.raySpacing},
+              {"width", m.rayWidth},
+              {"height", m.rayHeight},
+              {"contrast", m.rayContrast}}},
+            {"resin_canals",
+             {{"spacing", m.resinSpacing},
+              {"diameter", m.resinDiameter},
+              {"darkening", m.resinDarkening}}}};
     }
     return j;
 }

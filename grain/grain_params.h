@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "grain/anatomy_params.h"
 #include "grain/rgb.h"
 #include "grain/ring_model.h"
 #include "util/vec3.h"
@@ -47,9 +48,11 @@ struct SwayParams {
 
 /// Section 3 and 4.6: colours and micro-structure.
 struct ColourParams {
-    Rgb earlyWood{0.74, 0.50, 0.28};  ///< Cl: scene-linear
-    Rgb lateWood{0.42, 0.20, 0.07};   ///< Cd: scene-linear
-    double lateWoodExponent = 6;      ///< n of eq. 6: larger = narrower late-wood band
+    Rgb earlyWood{0.74, 0.50, 0.28};   ///< Cl: scene-linear
+    Rgb lateWood{0.42, 0.20, 0.07};    ///< Cd: scene-linear
+    double lateWoodExponent = 6;       ///< n of eq. 6: larger = narrower late-wood band
+    double lateWoodShare = 0;          ///< > 0: an abrupt late-wood band this share of the ring
+    double lateWoodTransition = 0.05;  ///< share of the ring over which the abrupt step rises
     bool heartwood = true;
     double heartwoodStart = 12;  ///< Th1, years: heartwood below
     double heartwoodEnd = 16;    ///< Th2, years: sapwood above
@@ -86,6 +89,8 @@ struct GrainParams {
     ColourParams colour;
     /// Yearly ring widths for skeletons that record none ("rings"; off = constant Sb).
     RingModelParams rings;
+    /// Fibres, pores, rays, resin canals at close range ("anatomy"; off by default).
+    AnatomyParams anatomy;
 };
 
 GrainParams loadGrainFile(const std::string& path);

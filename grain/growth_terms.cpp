@@ -36,6 +36,13 @@ double lateWoodFraction(double growthTime, double exponent) {
     return std::pow(s, exponent);
 }
 
+double lateWoodFraction(double growthTime, const LateWoodShape& shape) {
+    if (shape.share <= 0) return lateWoodFraction(growthTime, shape.exponent);
+    double u = growthTime - std::floor(growthTime);
+    double start = 1 - shape.share;
+    return smoothstep(start - 0.5 * shape.transition, start + 0.5 * shape.transition, u);
+}
+
 SwayWaves makeSwayWaves(const SwayParams& sway) {
     SwayWaves w;
     w.amplitude = sway.amplitude;

@@ -105,6 +105,17 @@ inline double junctionReachWeight(double effectiveBranchTime, double trunkTime, 
 /// the season, rising to 1 in late wood at the ring's end.
 double lateWoodFraction(double growthTime, double exponent);
 
+/// A species' early-to-late-wood transition: eq. 6's sine power when `share` is 0 (a gradual
+/// rise, as in spruce), or an abrupt step (larch, pine, Douglas fir) into a late-wood band
+/// `share` of the ring wide, over a transition `transition` of the ring:
+/// E = smoothstep(1 - share - transition/2, 1 - share + transition/2, frac(T)).
+struct LateWoodShape {
+    double exponent = 6;
+    double share = 0;
+    double transition = 0.05;
+};
+double lateWoodFraction(double growthTime, const LateWoodShape& shape);
+
 /// Heartwood weight (3.2): 1 for T < Th1 (heartwood), 0 for T > Th2 (sapwood), linear between.
 inline double heartwoodWeight(double growthTime, double start, double end) {
     if (growthTime <= start) return 1;

@@ -10,19 +10,19 @@ namespace {
 constexpr int kTableSize = 1024;
 }
 
-RingProfile::RingProfile(double exponent)
-    : exponent_(exponent), values_(kTableSize + 1), cumulative_(kTableSize + 1) {
+RingProfile::RingProfile(const LateWoodShape& shape)
+    : shape_(shape), values_(kTableSize + 1), cumulative_(kTableSize + 1) {
     for (int i = 0; i < kTableSize; ++i)
-        values_[i] = lateWoodFraction(double(i) / kTableSize, exponent);
-    values_[kTableSize] = 1;  // sin(pi / 2)^n: the end of the ring, approached from below
+        values_[i] = lateWoodFraction(double(i) / kTableSize, shape);
+    values_[kTableSize] = 1;  // the end of the ring (late wood), approached from below
     // Simpson's rule on each table interval: E is smooth inside a ring, so the table's own
     // error (~1e-12) is far below anything visible; lookups interpolate linearly between
     // entries, exact for the integral up to O(1/N^2) of E's curvature.
     cumulative_[0] = 0;
     for (int i = 0; i < kTableSize; ++i) {
         double a = double(i) / kTableSize, b = double(i + 1) / kTableSize;
-        double ea = lateWoodFraction(a, exponent), eb = lateWoodFraction(b - 1e-15, exponent);
-        double em = lateWoodFraction(0.5 * (a + b), exponent);
+        double ea = lateWoodFraction(a, shape), eb = lateWoodFraction(b - 1e-15, shape);
+        double em = lateWoodFraction(0.5 * (a + b), shape);
         cumulative_[i + 1] = cumulative_[i] + (b - a) * (ea + 4 * em + eb) / 6;
     }
 }

@@ -6,12 +6,16 @@
 
 #include <vector>
 
+#include "grain/growth_terms.h"
+
 namespace nenrin {
 
 class RingProfile {
 public:
     /// `exponent` is n of eq. 6 (late_wood_exponent); larger = narrower late-wood band.
-    explicit RingProfile(double exponent);
+    explicit RingProfile(double exponent) : RingProfile(LateWoodShape{exponent}) {}
+    /// Any transition shape (eq. 6, or an abrupt step into a late-wood band).
+    explicit RingProfile(const LateWoodShape& shape);
 
     /// E at growth time T (unfiltered), from a table: within 1e-5 of sin^n, without the
     /// sin and pow that would otherwise dominate shading.
@@ -28,7 +32,7 @@ private:
     /// Integral of E from 0 to T (T may span many rings).
     double integral(double T) const;
 
-    double exponent_;
+    LateWoodShape shape_;
     std::vector<double> values_;      ///< E(i / N), i = 0..N (the last one the limit from below)
     std::vector<double> cumulative_;  ///< integral of E over [0, i / N], i = 0..N
 };

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grain/growth_terms.h"
 #include "grain/wood_colour.h"
+#include "shader/wood_anatomy.h"
 
 namespace nenrin {
 
@@ -24,7 +26,9 @@ double microWeight(double size, double cell) {
 WoodShader::WoodShader(const GrowthField& field, Finish finish)
     : field_(&field),
       finish_(std::move(finish)),
-      rings_(field.params().colour.lateWoodExponent),
+      rings_(LateWoodShape{field.params().colour.lateWoodExponent,
+                           field.params().colour.lateWoodShare,
+                           field.params().colour.lateWoodTransition}),
       gradientStep_(std::max(1e-6, 0.02 * field.params().radialSpeed)) {}
 
 void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample> out,
@@ -68,6 +72,7 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
     for (size_t i = 0; i < n; ++i) {
         const GrowthSample& s = scratch.samples[4 * i];
         WoodSurfaceSample& o = out[i];
+        Vec3 anatomyRelief;
         o.T = s.T;
         o.knot = s.knot;
         o.deadKnot = s.deadKnot;
@@ -106,6 +111,15 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         double g2 = lengthSquared(o.gradientT);
         Vec3 along = g2 > 0 ? axis - o.gradientT * (dot(axis, o.gradientT) / g2) : axis;
         o.fibre = lengthSquared(along) > 1e-12 ? normalize(along) : axis;
+        if (field_->params().anatomy.enabled && !outside) {
+            // Fibres, pores and rays, faded inside knots (their fibres follow the branch).
+            SurfaceFootprint f = footprints.empty() ? SurfaceFootprint{} : footprints[i];
+            AnatomySample a =
+                woodAnatomy(field_->params().anatomy, s, treePoints[i], o.gradientT, f.dpdx, f.dpdy,
+                            f.diameter, 1 - smoothstep(0.3, 0.6, s.knot));
+            o.albedo = multiply(o.albedo, a.filter);
+            anatomyRelief = a.reliefGradient;
+        }
         if (!footprints.empty() && !outside && lengthSquared(footprints[i].normal) > 0)
             o.albedo = endGrainAlbedo(
                 o.albedo, std::abs(dot(normalize(footprints[i].normal), o.fibre)), colour);
@@ -113,7 +127,7 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         double slope = rings_.filteredSlope(s.T, std::max(width, kReliefMinWidth));
         // Past a footprint of a ring or so the relief averages out: fade it with the filter.
         double fade = 1 / (1 + width * width * 4);
-        o.reliefGradient = o.gradientT * (finish_.bumpDepth * slope * fade);
+        o.reliefGradient = o.gradientT * (finish_.bumpDepth * slope * fade) + anatomyRelief;
         o.roughness = coatAlpha;
     }
 }

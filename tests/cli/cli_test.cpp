@@ -312,7 +312,8 @@ TEST_F(CliTest, SliceHelpMentionsThePlane) {
 
 TEST_F(CliTest, SliceBakeWritesExrWithChannelsAndMetadata) {
     const std::string skeleton = skeletonScene("straight-trunk.json").string();
-    auto r = slice({{"--grain", grainScene("spruce.json").string()}, {"--res", "32x24"}});
+    auto r =
+        slice({{"--grain", grainScene("species/norway-spruce.json").string()}, {"--res", "32x24"}});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err, "");
     EXPECT_NE(r.out.find("wrote " + (out_ / "slice.exr").string()), std::string::npos) << r.out;
@@ -352,7 +353,7 @@ TEST_F(CliTest, SliceBakeWritesExrWithChannelsAndMetadata) {
 TEST_F(CliTest, SliceBakeIsBitwiseIdenticalForOneAndTwoThreads) {
     // A cross cut through broadleaf.json at 1.3 m crosses a branch, so knots are in the picture.
     Options options{{"--skeleton", skeletonScene("broadleaf.json").string()},
-                    {"--grain", grainScene("spruce.json").string()},
+                    {"--grain", grainScene("species/norway-spruce.json").string()},
                     {"--at", "1.3"},
                     {"--size", "0.6x0.6m"},
                     {"--res", "48x40"}};
@@ -415,7 +416,7 @@ TEST_F(CliTest, Df3VolumeBakeWritesDensityFilesAndInclude) {
 TEST_F(CliTest, Df3VolumeBakeIsBitwiseIdenticalForOneAndTwoThreads) {
     for (const char* threads : {"1", "2"}) {
         auto r = volume({{"--skeleton", skeletonScene("broadleaf.json").string()},
-                         {"--grain", grainScene("spruce.json").string()},
+                         {"--grain", grainScene("species/norway-spruce.json").string()},
                          {"--box", "-0.3,-0.3,1.2,0.3,0.3,1.4"},
                          {"--threads", threads},
                          {"-o", (out_ / fmt::format("t{}.df3", threads)).string()}});

@@ -29,7 +29,7 @@ protected:
     std::string woodMaterial(const std::string& extra = "") {
         return fmt::format(R"({{"name": "w", "type": "wood", "skeleton": "{}", "grain": "{}"{}}})",
                            skeletonScene("conifer.json").string(),
-                           grainScene("spruce.json").string(), extra);
+                           grainScene("species/norway-spruce.json").string(), extra);
     }
 
     std::string scene(

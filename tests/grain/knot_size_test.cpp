@@ -70,7 +70,7 @@ TEST(KnotSize, Gran1KnotsAt60MillimetresAre10To20MillimetresAcross) {
     SkeletonIndex index(log.skeleton);
     GrainParams grain;
     grain.radialSpeed = log.ringWidth;
-    grain.junction.p = 4;  // the blend of scenes/grain/spruce.json
+    grain.junction.p = 4;  // the blend of scenes/grain/species/norway-spruce.json
     GrowthField field(index, grain);
     std::vector<KnotCut> cuts = cutsAtRadius(log.skeleton, 0.06);
     ASSERT_GT(cuts.size(), 40u);

@@ -217,14 +217,15 @@ int compare(const std::vector<WoodSurfaceSample>& expected,
 }
 
 std::string coniferDescription(const std::string& finish = "oiled") {
-    return R"({"skeleton": "scenes/skeletons/conifer.json", "grain": "scenes/grain/spruce.json",
+    return R"({"skeleton": "scenes/skeletons/conifer.json", "grain": "scenes/grain/species/norway-spruce.json",
                "finish": ")" +
            finish + R"("})";
 }
 
 Reference coniferReference(const std::string& finish = "oiled") {
     return Reference(loadSkeletonFile(kSourceDir + "/scenes/skeletons/conifer.json"),
-                     loadGrainFile(kSourceDir + "/scenes/grain/spruce.json"), finish);
+                     loadGrainFile(kSourceDir + "/scenes/grain/species/norway-spruce.json"),
+                     finish);
 }
 
 class ShaderPlugin : public ::testing::Test {
@@ -389,7 +390,7 @@ TEST_F(ShaderPlugin, UnknownKeysAndValuesAreErrors) {
         {"<description>: colour: unknown key"});
     expectInputError(create(R"({"skeleton": "scenes/skeletons/conifer.json", "finish": "glossy"})"),
                      {"<description>: finish: ", "matte, oiled, varnished", "\"glossy\""});
-    expectInputError(create(R"({"grain": "scenes/grain/spruce.json"})"),
+    expectInputError(create(R"({"grain": "scenes/grain/species/norway-spruce.json"})"),
                      {"<description>: skeleton: missing"});
     expectInputError(create(R"({"skeleton": 3})"), {"<description>: skeleton: ", "found a number"});
     expectInputError(create(R"({"skeleton": ""})"), {"<description>: skeleton: ", "empty"});

@@ -92,8 +92,8 @@ NENRIN_SHADER_API const char* nenrin_shader_version(void);
 /* Creates a shader from a JSON description (UTF-8, NUL-terminated):
  *
  *   { "skeleton": "trees/conifer.json" or an inline skeleton object (required),
- *     "grain":    "grain/spruce.json"  or an inline grain object (optional: built-in defaults),
- *     "finish":   "matte" | "oiled" | "varnished" (optional, default "oiled") }
+ *     "grain":    "grain/species/norway-spruce.json"  or an inline grain object (optional: built-in
+ * defaults), "finish":   "matte" | "oiled" | "varnished" (optional, default "oiled") }
  *
  * Skeleton and grain objects use the formats of docs/skeleton-format.md and
  * docs/grain-format.md. Unknown keys, here and in those objects, are errors. Relative file

@@ -1,0 +1,243 @@
+#include "shader/wood_anatomy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "util/hash.h"
+
+namespace nenrin {
+
+namespace {
+
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+/// Share of [lo, hi] under a box filter of width f centred at x (f = 0: the indicator).
+double boxCoverage(double x, double lo, double hi, double f) {
+    if (f <= 1e-12) return x >= lo && x < hi ? 1.0 : 0.0;
+    double a = std::clamp(x - 0.5 * f, lo, hi), b = std::clamp(x + 0.5 * f, lo, hi);
+    return (b - a) / f;
+}
+
+/// 1 while the footprint is below a quarter of the feature's cell, 0 from a whole cell on:
+/// past that, the filtered feature is replaced by its mean (neighbours would enter the box).
+double detail(double footprint, double cell) {
+    return 1 - std::clamp((footprint / cell - 0.25) / 0.75, 0.0, 1.0);
+}
+
+double cellRandom(uint64_t seed, uint64_t salt, long long a, long long b, long long c = 0) {
+    return uniform01(hashCombine(seed, salt),
+                     static_cast<uint64_t>(a) * 0x9E3779B97F4A7C15ull ^ static_cast<uint64_t>(b),
+                     static_cast<uint64_t>(c));
+}
+
+/// Value noise in [-1, 1] on a unit lattice, smoothly interpolated (fibre streaks).
+double valueNoise(uint64_t seed, double x, double y, double z) {
+    const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
+    const long long ix = (long long)fx, iy = (long long)fy, iz = (long long)fz;
+    auto s = [](double t) { return t * t * (3 - 2 * t); };
+    const double tx = s(x - fx), ty = s(y - fy), tz = s(z - fz);
+    double v = 0;
+    for (int c = 0; c < 8; ++c) {
+        const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
+        const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
+        v += w * (2 * cellRandom(seed, 11, ix + dx, iy + dy, iz + dz) - 1);
+    }
+    return v;
+}
+
+struct Frame {
+    double rho, theta, z, T, gradT;  // m, rad, m, years, years/m
+    double ft, fr, fz;               // footprint extents along tangential, radial, axial (m)
+    // Rings are not circles about the axis (sway, the sun side): a step `dt` along the circle
+    // and `dr` in ring-aligned radial position (T / |grad T|) is a true radial step of
+    // scale dr - shear dt.
+    double scale = 1, shear = 0;
+    Vec3 t, r;  // unit tangential and radial directions
+};
+
+/// A tube along the fibre in one cell of (tangential, radial, axial) cells: a box section of
+/// half-size `half` around a jittered centre, a run of `runLength` inside a cell `zCell` long.
+/// Returns the filtered coverage; `outward` gets the unit direction from the tube's axis.
+struct TubeCell {
+    double tCell, rCell;  // m
+    double zCell, runLength;
+    double half;
+    double probability;
+};
+
+double tube(const Frame& f, const TubeCell& c, double tPos, double rPos, long long ring,
+            uint64_t seed, uint64_t salt, Vec3* outward, double* mean) {
+    const long long it = (long long)std::floor(tPos / c.tCell);
+    const long long ir = (long long)std::floor(rPos / c.rCell) + ring * 1000003;
+    // pi/4: an ellipse in its box.
+    *mean = c.probability * 0.785 * (2 * c.half / c.tCell) * (2 * c.half / c.rCell) *
+            (c.runLength / c.zCell);
+    if (cellRandom(seed, salt, it, ir) >= c.probability) return 0;
+    const double size = 0.7 + 0.6 * cellRandom(seed, salt + 5, it, ir);
+    const double half = c.half * size;
+    const double mt = std::min(0.5, half / c.tCell + 0.02),
+                 mr = std::min(0.5, half / c.rCell + 0.02);
+    const double ct = (it + mt + (1 - 2 * mt) * cellRandom(seed, salt + 1, it, ir)) * c.tCell;
+    const double cr =
+        (std::floor(rPos / c.rCell) + mr + (1 - 2 * mr) * cellRandom(seed, salt + 2, it, ir)) *
+        c.rCell;
+    // Along the fibre: runs of vessel in cells of zCell, each at its own offset.
+    const double zc = f.z + c.zCell * cellRandom(seed, salt + 3, it, ir);
+    const long long iz = (long long)std::floor(zc / c.zCell);
+    const double z0 =
+        (iz + (1 - c.runLength / c.zCell) * cellRandom(seed, salt + 4, it, iz)) * c.zCell;
+    // The section: an ellipse, its edge softened over the footprint.
+    const double dt = tPos - ct, dr = f.scale * (rPos - cr) - f.shear * dt;
+    const double n = std::hypot(dt, dr) / half;
+    const double edge = std::max(0.08, std::max(f.ft, f.fr) / half);
+    const double section = 1 - std::clamp((n - (1 - edge)) / (2 * edge), 0.0, 1.0);
+    const double cov = section * boxCoverage(zc, z0, z0 + c.runLength, f.fz);
+    if (outward) {
+        const double l = std::hypot(dt, dr);
+        *outward = l > 0 ? (f.t * dt + f.r * dr) * (1 / l) : Vec3{};
+    }
+    return cov;
+}
+
+}  // namespace
+
+AnatomySample woodAnatomy(const AnatomyParams& p, const GrowthSample& s, const Vec3& point,
+                          const Vec3& gradT, const Vec3& dpdx, const Vec3& dpdy, double diameter,
+                          double weight) {
+    AnatomySample out;
+    if (!p.enabled || weight <= 0) return out;
+    // The local wood frame about the trunk axis.
+    const Vec3 a = normalize(s.axisDirection);
+    const Vec3 d = point - s.axisPoint;
+    const Vec3 perp = d - a * dot(d, a);
+    Frame f;
+    f.rho = length(perp);
+    if (f.rho < 1e-5) return out;
+    const Vec3 e1 = normalize(cross(a, std::abs(a.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+    const Vec3 e2 = cross(a, e1);
+    f.theta = std::atan2(dot(perp, e2), dot(perp, e1));
+    f.z = dot(point, a);
+    f.T = s.T;
+    f.gradT = std::max(length(gradT), 1.0);
+    f.r = perp * (1 / f.rho);
+    f.t = cross(a, f.r);
+    auto extent = [&](const Vec3& u) {
+        return std::max({std::abs(dot(dpdx, u)), std::abs(dot(dpdy, u)), diameter});
+    };
+    f.ft = extent(f.t), f.fr = extent(f.r), f.fz = extent(a);
+    const double gt = dot(gradT, f.t), gr = dot(gradT, f.r);
+    if (gr > 0.2 * f.gradT) f.scale = f.gradT / gr, f.shear = gt / gr;
+    const double arc = f.rho * f.theta;   // tangential position (m)
+    const double radial = f.T / f.gradT;  // radial position (m), rings at their true spacing
+    const double phase = f.T - std::floor(f.T);
+
+    // Fibre streaks: long along the fibre, narrow across it.
+    double fibre = 0;
+    {
+        const double keep = std::min(detail(f.ft, p.fibreWidth), detail(f.fr, p.fibreWidth));
+        if (keep > 0)
+            fibre =
+                keep * p.fibreAmplitude *
+                valueNoise(p.seed, arc / p.fibreWidth, f.rho / p.fibreWidth, f.z / p.fibreLength);
+    }
+
+    // Vessels.
+    double pore = 0;
+    if (p.pores != PoreKind::None) {
+        const bool ringPorous = p.pores == PoreKind::RingPorous;
+        const double half = std::min(0.5 * p.poreDiameter, 0.35 * p.poreSpacing);
+        TubeCell c{p.poreSpacing, p.poreSpacing, 1.6 * p.poreLength,
+                   p.poreLength,  half,          ringPorous ? 0.75 : 0.45};
+        bool here = true;
+        double rPos = radial;
+        long long ring = 0;
+        if (ringPorous) {
+            // Rows of vessels filling the early-wood band, cells aligned to the ring's start.
+            here = phase < p.poreBand;
+            const double band = p.poreBand / f.gradT;  // m
+            const double rows = std::max(1.0, std::round(band / p.poreSpacing));
+            c.rCell = band / rows;
+            c.half = std::min(c.half, 0.4 * c.rCell);
+            rPos = phase / f.gradT;
+            ring = (long long)std::floor(f.T);
+        } else if (phase > 0.75) {
+            c.probability *= 0.5;  // fewer vessels in the late wood
+        }
+        if (here) {
+            Vec3 outward;
+            double mean = 0;
+            double cov = tube(f, c, arc, rPos, ring, p.seed, 101, &outward, &mean);
+            const double keep =
+                std::min(detail(std::max(f.ft, f.fr), p.poreSpacing), detail(f.fz, c.zCell));
+            pore = keep * cov + (1 - keep) * mean;
+            // The open pore is a pit: the relief falls towards its axis.
+            out.reliefGradient = outward * (keep * p.poreDepth * cov * (1 - cov) * 4);
+        }
+    }
+
+    // Rays: sheets of constant azimuth; more of them further out (new rays start as the
+    // circumference grows), so their spacing stays near raySpacing.
+    double ray = 0;
+    if (p.rayWidth > 0 && p.raySpacing > 0) {
+        const int base = std::max(8, (int)std::lround(kTwoPi * 0.05 / p.raySpacing));
+        const double zCell = 2.5 * p.rayHeight;
+        for (int k = 0; k < 3; ++k) {
+            if (k > 0 && f.rho < 0.05 * (1 << (k - 1)) * 1.5) break;
+            const long long n = (long long)base << k;
+            const double u = (f.theta + std::numbers::pi) / kTwoPi * double(n);
+            const long long j = ((long long)std::floor(u) % n + n) % n;
+            if (k > 0 && cellRandom(p.seed, 200 + k, j, 0) < 0.5) continue;
+            const double centre = std::floor(u) + 0.2 + 0.6 * cellRandom(p.seed, 210 + k, j, 0);
+            const double dt = (u - centre) / double(n) * kTwoPi * f.rho;  // m
+            const double zc = f.z + zCell * cellRandom(p.seed, 220 + k, j, 0);
+            const long long iz = (long long)std::floor(zc / zCell);
+            const double h = p.rayHeight * (0.6 + 0.8 * cellRandom(p.seed, 230 + k, j, iz));
+            const double z0 = (iz + (1 - h / zCell) * cellRandom(p.seed, 240 + k, j, iz)) * zCell;
+            // Spindle-shaped in the tangential section (widest at mid-height), and of limited
+            // radial extent: flecks, not bands, on quarter-sawn faces.
+            const double along = (zc - z0) / h * 2 - 1;
+            const double w = p.rayWidth * std::sqrt(std::max(0.0, 1 - along * along));
+            const double rCell = 6 * p.rayHeight;
+            const double rc = f.rho + rCell * cellRandom(p.seed, 250 + k, j, iz);
+            const long long ir = (long long)std::floor(rc / rCell);
+            const double r0 = (ir + 0.4 * cellRandom(p.seed, 260 + k, j, ir)) * rCell;
+            const double cov = boxCoverage(dt, -0.5 * w, 0.5 * w, f.ft) *
+                               boxCoverage(zc, z0, z0 + h, f.fz) *
+                               boxCoverage(rc, r0, r0 + 0.6 * rCell, f.fr);
+            const double spacing = kTwoPi * f.rho / double(n);
+            // pi/4: the spindle's area against its box; 0.6: the radial share.
+            const double mean =
+                0.785 * 0.6 * (p.rayWidth / spacing) * (p.rayHeight / zCell) * (k ? 0.5 : 1);
+            const double keep = std::min(detail(f.ft, spacing), detail(f.fz, zCell));
+            ray = std::max(ray, keep * cov + (1 - keep) * mean);
+        }
+    }
+
+    // Resin canals: sparse ducts in the late wood.
+    double resin = 0;
+    if (p.resinSpacing > 0 && phase > 0.55) {
+        TubeCell c{p.resinSpacing,
+                   p.resinSpacing,
+                   0.04,
+                   0.02,
+                   std::min(0.5 * p.resinDiameter, 0.35 * p.resinSpacing),
+                   0.3};
+        double mean = 0;
+        double cov = tube(f, c, arc, radial, 0, p.seed, 301, nullptr, &mean);
+        const double keep =
+            std::min(detail(std::max(f.ft, f.fr), p.resinSpacing), detail(f.fz, c.zCell));
+        resin = keep * cov + (1 - keep) * mean;
+    }
+
+    const double b = (1 + weight * fibre) * (1 + weight * p.rayContrast * ray) *
+                     (1 - weight * p.poreDarkening * pore) *
+                     (1 - weight * p.resinDarkening * resin);
+    out.filter = {b, b, b};
+    out.reliefGradient = out.reliefGradient * weight;
+    out.pore = pore * weight;
+    out.ray = ray * weight;
+    return out;
+}
+
+}  // namespace nenrin

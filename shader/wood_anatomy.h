@@ -1,0 +1,32 @@
+#pragma once
+/// Wood anatomy at close range: fibre streaks, vessels (pores), rays and resin canals, drawn in
+/// the local wood frame of a trunk point: the radial distance rho and azimuth theta about the
+/// trunk axis (rays are sheets of constant theta: lines across the rings on end grain), the
+/// growth time T (rings: ring-porous vessels sit in the early-wood band), and the position z
+/// along the axis (fibres, vessels and rays are long along it).
+///
+/// Every feature is filtered over the pixel footprint: it fades to its mean (the same average
+/// colour) once it is smaller than about a pixel, so a distant board neither aliases nor
+/// changes tone. Point samples (footprint 0) draw the features sharp.
+
+#include "grain/anatomy_params.h"
+#include "grain/growth_field.h"
+#include "grain/rgb.h"
+
+namespace nenrin {
+
+struct AnatomySample {
+    Rgb filter{1, 1, 1};  ///< multiplies the albedo
+    Vec3 reliefGradient;  ///< added to the relief gradient (pits of open pores), tree space
+    double pore = 0;      ///< pore coverage 0..1 (for tests and AOVs)
+    double ray = 0;       ///< ray coverage 0..1
+};
+
+/// `gradT` is grad T at the point (years/m); `dpdx`, `dpdy` the pixel's footprint on the
+/// surface (tree space, m; both zero = a point sample), or `diameter` > 0 for an isotropic one;
+/// `weight` scales everything (0 inside knots, whose fibres run elsewhere).
+AnatomySample woodAnatomy(const AnatomyParams& params, const GrowthSample& sample,
+                          const Vec3& treePoint, const Vec3& gradT, const Vec3& dpdx,
+                          const Vec3& dpdy, double diameter = 0, double weight = 1);
+
+}  // namespace nenrin

@@ -1,0 +1,135 @@
+// Wood anatomy: vessels only where the species has them (a band in the early wood for
+// ring-porous woods, throughout for diffuse-porous ones, none in conifers), rays across the
+// rings on end grain, and every feature fading to its mean under a wide footprint.
+
+#include "shader/wood_anatomy.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "skeleton/skeleton_index.h"
+#include "tests/test_trees.h"
+
+namespace nenrin {
+namespace {
+
+class Anatomy : public ::testing::Test {
+protected:
+    Anatomy() : skeleton_(test::straightTrunk(10, 0.5)), index_(skeleton_) {
+        grain_.radialSpeed = 0.004;
+        field_ = std::make_unique<GrowthField>(index_, grain_);
+        params_.enabled = true;
+    }
+    /// Anatomy at p with grad T from the field (point samples unless a footprint is given).
+    AnatomySample at(const Vec3& p, double diameter = 0) const {
+        GrowthSample s = field_->evaluate(p);
+        const double h = 1e-6;
+        Vec3 g{(field_->evaluate(p + Vec3{h, 0, 0}).T - s.T) / h,
+               (field_->evaluate(p + Vec3{0, h, 0}).T - s.T) / h,
+               (field_->evaluate(p + Vec3{0, 0, h}).T - s.T) / h};
+        return woodAnatomy(params_, s, p, g, {}, {}, diameter);
+    }
+    /// Mean pore coverage over points of one ring phase band, on many radii and heights.
+    double poresInPhase(double lo, double hi) const {
+        double sum = 0;
+        int n = 0;
+        for (int ring = 10; ring < 20; ++ring)
+            for (int k = 0; k < 40; ++k) {
+                double phase = lo + (hi - lo) * (k + 0.5) / 40;
+                double r = (ring + phase) * grain_.radialSpeed;  // T = r / Sb at z = 0
+                for (int a = 0; a < 50; ++a) {
+                    double az = 2 * std::numbers::pi * a / 50;
+                    sum += at({r * std::cos(az), r * std::sin(az), 0.0001 * a}).pore;
+                    ++n;
+                }
+            }
+        return sum / n;
+    }
+    Skeleton skeleton_;
+    SkeletonIndex index_;
+    GrainParams grain_;
+    std::unique_ptr<GrowthField> field_;
+    AnatomyParams params_;
+};
+
+TEST_F(Anatomy, RingPorousWoodHasItsVesselsInTheEarlyWoodBand) {
+    params_.pores = PoreKind::RingPorous;
+    params_.poreBand = 0.25;
+    params_.poreDiameter = 0.0003;
+    params_.poreSpacing = 0.0006;
+    double early = poresInPhase(0.0, 0.24), late = poresInPhase(0.3, 0.97);
+    EXPECT_GT(early, 0.05);
+    EXPECT_EQ(late, 0);
+}
+
+TEST_F(Anatomy, DiffusePorousWoodHasVesselsThroughoutAndConifersNone) {
+    params_.pores = PoreKind::DiffusePorous;
+    params_.poreDiameter = 0.00008;
+    params_.poreSpacing = 0.0003;
+    double early = poresInPhase(0.0, 0.3), late = poresInPhase(0.4, 0.9);
+    EXPECT_GT(early, 0.01);
+    EXPECT_GT(late, 0.01);
+    EXPECT_LT(std::abs(early - late) / early, 0.5);
+    params_.pores = PoreKind::None;
+    EXPECT_EQ(poresInPhase(0.0, 1.0), 0);
+}
+
+// On a cross cut (end grain) rays are lines across the rings: the ray map changes along the
+// rings (tangentially) and not across them (radially). Measured as the orientation of its
+// gradient on a grid 80 mm from the pith.
+TEST_F(Anatomy, RaysRunAcrossTheRingsOnEndGrain) {
+    params_.raySpacing = 0.001;
+    params_.rayWidth = 0.0002;
+    params_.rayHeight = 0.01;
+    const double step = 0.00005, z = 0.5;
+    const int n = 200;
+    std::vector<double> map(size_t(n) * n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+            map[size_t(j) * n + i] = at({0.08 + (i - n / 2) * step, (j - n / 2) * step, z}).ray;
+    double radialPart = 0, total = 0, rays = 0;
+    for (int j = 1; j + 1 < n; ++j)
+        for (int i = 1; i + 1 < n; ++i) {
+            double gx = map[size_t(j) * n + i + 1] - map[size_t(j) * n + i - 1];
+            double gy = map[size_t(j + 1) * n + i] - map[size_t(j - 1) * n + i];
+            double x = 0.08 + (i - n / 2) * step, y = (j - n / 2) * step;
+            double r = std::hypot(x, y);
+            double radial = (gx * x + gy * y) / r;  // gradient along the radius
+            radialPart += std::abs(radial);
+            total += std::hypot(gx, gy);
+            rays += map[size_t(j) * n + i];
+        }
+    ASSERT_GT(total, 0);
+    EXPECT_GT(rays / (n * n), 0.01);     // rays are there
+    EXPECT_LT(radialPart / total, 0.2);  // ~0.64 for an isotropic pattern
+}
+
+// Wide footprints: each feature gives way to its mean, so a distant board keeps its tone.
+TEST_F(Anatomy, WideFootprintsGiveTheMeanOfTheSharpFeatures) {
+    params_.pores = PoreKind::DiffusePorous;
+    params_.poreDiameter = 0.0001;
+    params_.poreSpacing = 0.0004;
+    params_.raySpacing = 0.001;
+    params_.rayWidth = 0.00015;
+    params_.fibreAmplitude = 0;
+    double sharp = 0, wide = 0;
+    int n = 0;
+    for (int a = 0; a < 200; ++a)
+        for (int k = 0; k < 200; ++k) {
+            double r = 0.05 + 0.00002 * k, az = 0.0001 * a;
+            Vec3 p{r * std::cos(az), r * std::sin(az), 0.3 + 0.00003 * a};
+            sharp += at(p).filter.r;
+            ++n;
+        }
+    for (int k = 0; k < 50; ++k) {
+        double r = 0.05 + 0.00008 * k;
+        wide += at({r, 0, 0.3 + 0.0001 * k}, 0.02).filter.r;
+    }
+    EXPECT_NEAR(wide / 50, sharp / n, 0.01);
+    EXPECT_LT(sharp / n, 0.999);  // the features darken on average
+}
+
+}  // namespace
+}  // namespace nenrin
