@@ -88,6 +88,7 @@ struct PathState {
     // Shading inputs worked out per hit.
     uint32_t material = 0;
     int32_t lamella = -1;
+    Rgb boardTint{1, 1, 1};  ///< the board's tree (cut plan)
     const RigidTransform* treeFromObject = nullptr;
     const RigidTransform* worldFromObject = nullptr;
     const GlueLine* glue = nullptr;  ///< laminated products
@@ -324,12 +325,14 @@ void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
         path.material = object.material;
         path.worldFromObject = &object.worldFromObject;
         path.lamella = -1;
+        path.boardTint = {1, 1, 1};
         path.treeFromObject = &object.treeFromObject;
         path.glue = nullptr;
         if (object.layout) {
             Vec3 local = object.worldFromObject.inverse().point(path.hit.position);
             const Lamella& l = object.layout->lamellae[object.layout->lamellaAt(local)];
             path.lamella = l.id;
+            path.boardTint = l.tint;
             path.treeFromObject = &l.treeFromProduct;
             if (object.layout->glue.width > 0) {
                 path.glue = &object.layout->glue;
@@ -622,7 +625,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
         if (material.type == MaterialType::Wood) {
             const Finish& finish = material.wood->finish();
             if (wood->coverage > 0) {
-                bsdf.base = wood->albedo;
+                bsdf.base = multiply(wood->albedo, path.boardTint);
                 bsdf.fibreStrength = finish.fibreStrength;
                 bsdf.fibreWidth = finish.fibreWidth;
             } else {

@@ -213,6 +213,7 @@ CutPlanParams readCutPlan(JsonReader& parent) {
     if (c.top > 0 && c.top <= c.bottom) throw r->error("top", "must lie above \"bottom\"");
     c.maxRadius = r->positive("max_radius", c.maxRadius);
     c.margin = r->nonNegative("margin", c.margin);
+    c.colourVariation = r->inRange("colour_variation", c.colourVariation, 0, 5);
     r->finish();
     return c;
 }
@@ -239,6 +240,7 @@ void cutLamellae(LaminatedLayout& layout, const GrowthField& field, const CutPla
         }
         l.id = nextId++;
         l.treeFromLamella = cut->treeFromLamella;
+        l.tint = cut->tint;
         l.treeFromProduct = l.treeFromLamella * l.lamellaFromProduct;
     }
 }

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "util/hash.h"
+#include "util/random_draws.h"
 
 namespace nenrin {
 
@@ -55,6 +56,16 @@ double logRadius(const GrowthField& field, const CutPlanParams& params, double z
     return lo;
 }
 
+Rgb boardTint(const CutPlanParams& params, uint64_t index) {
+    // Tree-to-tree variation of one species: lightness (sd ~4 %, about 1.5 L*) and warmth
+    // (red up and blue down, sd ~2.5 %, about 1-2 in a* and b*).
+    SplitMix rng(hashCombine(params.seed, 0x7ee5c010ull + index));
+    const double v = params.colourVariation;
+    const double light = std::exp(v * 0.04 * drawNormal(rng));
+    const double warm = v * 0.025 * drawNormal(rng);
+    return {light * (1 + warm), light, light * (1 - 1.5 * warm)};
+}
+
 std::optional<BoardCut> cutBoard(const GrowthField& field, const CutPlanParams& params,
                                  double length, double width, double thickness, uint64_t index) {
     double trunkLo, trunkHi;
@@ -64,6 +75,7 @@ std::optional<BoardCut> cutBoard(const GrowthField& field, const CutPlanParams& 
     if (top - bottom < length) return std::nullopt;
 
     SplitMix rng(hashCombine(params.seed, 0xb0a7d000ull + index));
+    const Rgb tint = boardTint(params, index);
     for (int attempt = 0; attempt < 64; ++attempt) {
         BoardCut cut;
         cut.height = rng.uniform(bottom + 0.5 * length, top - 0.5 * length);
@@ -121,7 +133,10 @@ std::optional<BoardCut> cutBoard(const GrowthField& field, const CutPlanParams& 
         field.evaluateBatch(edge, samples, scratch);
         bool inside = true;
         for (const GrowthSample& s : samples) inside = inside && s.T <= field.params().fellingTime;
-        if (inside || field.params().fellingTime <= 0) return cut;
+        if (inside || field.params().fellingTime <= 0) {
+            cut.tint = tint;
+            return cut;
+        }
     }
     return std::nullopt;
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "grain/growth_field.h"
+#include "grain/rgb.h"
 #include "renderer/geometry/rigid_transform.h"
 
 namespace nenrin {
@@ -24,6 +25,9 @@ struct CutPlanParams {
     double top = 0;          ///< m: highest height of a board's upper end; 0 = 70 % of the trunk
     double maxRadius = 0.3;  ///< m: log radius when the grain has no felling time
     double margin = 0.004;   ///< m: wood kept between a board's corners and the bark
+    /// Boards of one product come from different trees, which differ in colour by a few
+    /// dE*ab: scale of the per-board tint (1 = about 2-3 dE*ab between boards, 0 = none).
+    double colourVariation = 1;
 };
 
 struct BoardCut {
@@ -32,7 +36,12 @@ struct BoardCut {
     double offset = 0;   ///< m: board centre's distance from the pith
     bool quarterSawn = false;
     RigidTransform treeFromLamella;  ///< lamella: length x, width y, thickness z, centred
+    Rgb tint{1, 1, 1};               ///< this board's tree: a filter on the wood's albedo
 };
+
+/// The tint of board `index`: lightness and warmth drawn from the plan's seed (its own stream,
+/// so the cut itself does not change with colourVariation).
+Rgb boardTint(const CutPlanParams& params, uint64_t index);
 
 /// Log radius (m) at height z along azimuth `theta` (radians): where T reaches the felling
 /// time (bisection on the field), or params.maxRadius without a felling time.

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "grain/rgb.h"
 #include "renderer/geometry/rigid_transform.h"
 
 namespace nenrin {
@@ -24,6 +25,7 @@ struct Lamella {
     RigidTransform lamellaFromProduct;  ///< board centre at 0, length along x, width along y
     RigidTransform treeFromLamella;
     RigidTransform treeFromProduct;  ///< treeFromLamella * lamellaFromProduct
+    Rgb tint{1, 1, 1};               ///< the board's tree (cut plan): filter on the albedo
 };
 
 /// The glue line between boards: a thin film of adhesive seen on every face that cuts it.

@@ -1,11 +1,15 @@
 // Laminated layouts: which board a point of the block belongs to, and how far the nearest
-// glue line is.
+// glue line is; the colour tint of each board.
 
 #include "renderer/products/laminated_product.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <set>
+
+#include "grain/cielab.h"
+#include "renderer/products/cut_plan.h"
 
 namespace nenrin {
 namespace {
@@ -59,6 +63,38 @@ TEST(LaminatedLayout, EdgeGluedBoardsSitSideBySide) {
     EXPECT_EQ(t.lamellaAt({0, 0, -0.35}), 0u);
     EXPECT_EQ(t.lamellaAt({0, 0, 0.35}), 3u);
     EXPECT_NEAR(t.glueDistance({0.5, 0.0, 0.2 + 0.003}), 0.003, 1e-12);
+}
+
+}  // namespace
+}  // namespace nenrin
+
+namespace nenrin {
+namespace {
+
+// Boards of one product come from different trees: a few dE*ab apart (measured on the mean
+// spruce colour), the same for the same seed, none with colour_variation 0.
+TEST(BoardTint, BoardsDifferByAFewDeltaE) {
+    CutPlanParams plan;
+    plan.seed = 11;
+    const Rgb wood = linearSrgbFromLab({80, 6, 18});
+    double sum = 0;
+    int pairs = 0;
+    for (uint64_t i = 0; i < 24; ++i)
+        for (uint64_t j = i + 1; j < 24; ++j) {
+            sum += deltaE(labFromLinearSrgb(multiply(wood, boardTint(plan, i))),
+                          labFromLinearSrgb(multiply(wood, boardTint(plan, j))));
+            ++pairs;
+        }
+    const double mean = sum / pairs;
+    std::printf("board tints: mean dE*ab between boards %.2f\n", mean);
+    EXPECT_GT(mean, 1.5);
+    EXPECT_LT(mean, 5.0);
+    EXPECT_EQ(boardTint(plan, 3), boardTint(plan, 3));
+    CutPlanParams other = plan;
+    other.seed = 12;
+    EXPECT_NE(boardTint(plan, 3), boardTint(other, 3));
+    plan.colourVariation = 0;
+    EXPECT_EQ(boardTint(plan, 5), (Rgb{1, 1, 1}));
 }
 
 }  // namespace
