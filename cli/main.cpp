@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "bake_command.h"
+#include "grain_command.h"
 #include "pov_command.h"
 #include "render_command.h"
 #include "tree_command.h"
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", NENRIN_VERSION);
     app.require_subcommand(1);
     nenrin::addBakeCommands(app);
+    nenrin::addGrainCommands(app);
     nenrin::addRenderCommand(app);
     nenrin::addPovCommands(app);
     nenrin::addTreeCommands(app);

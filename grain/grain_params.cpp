@@ -118,6 +118,19 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
         cp.lateWoodShare = c->inRange("late_wood_share", cp.lateWoodShare, 0, 0.9);
         cp.lateWoodTransition =
             c->inRange("late_wood_transition", cp.lateWoodTransition, 0.005, 0.5);
+        if (c->has("late_wood_profile")) {
+            cp.lateWoodProfile = c->numberList("late_wood_profile");
+            if (cp.lateWoodProfile.size() < 2 || cp.lateWoodProfile.size() > 1024)
+                throw c->error("late_wood_profile",
+                               fmt::format("{} values: expected 2 to 1024 values of E over "
+                                           "one ring",
+                                           cp.lateWoodProfile.size()));
+            for (size_t i = 0; i < cp.lateWoodProfile.size(); ++i)
+                if (!(cp.lateWoodProfile[i] >= 0 && cp.lateWoodProfile[i] <= 1))
+                    throw c->error("late_wood_profile",
+                                   fmt::format("value {} is {}: expected E in [0, 1]", i,
+                                               cp.lateWoodProfile[i]));
+        }
         if (auto h = c->object("heartwood")) {
             cp.heartwood = h->boolean("enabled", cp.heartwood);
             cp.heartwoodStart = h->nonNegative("start", cp.heartwoodStart);
@@ -179,6 +192,7 @@ nlohmann::json grainToJson(const GrainParams& g) {
           {"late_wood_exponent", c.lateWoodExponent},
           {"late_wood_share", c.lateWoodShare},
           {"late_wood_transition", c.lateWoodTransition},
+          {"late_wood_profile", c.lateWoodProfile},
           {"heartwood",
            {{"enabled", c.heartwood},
             {"start", c.heartwoodStart},

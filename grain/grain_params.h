@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "grain/anatomy_params.h"
 #include "grain/rgb.h"
@@ -53,6 +54,9 @@ struct ColourParams {
     double lateWoodExponent = 6;       ///< n of eq. 6: larger = narrower late-wood band
     double lateWoodShare = 0;          ///< > 0: an abrupt late-wood band this share of the ring
     double lateWoodTransition = 0.05;  ///< share of the ring over which the abrupt step rises
+    /// A measured early-to-late-wood profile (E at evenly spaced ring phases, from
+    /// `nenrin grain strip`); overrides the exponent and the share when not empty.
+    std::vector<double> lateWoodProfile;
     bool heartwood = true;
     double heartwoodStart = 12;  ///< Th1, years: heartwood below
     double heartwoodEnd = 16;    ///< Th2, years: sapwood above

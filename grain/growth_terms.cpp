@@ -37,8 +37,13 @@ double lateWoodFraction(double growthTime, double exponent) {
 }
 
 double lateWoodFraction(double growthTime, const LateWoodShape& shape) {
-    if (shape.share <= 0) return lateWoodFraction(growthTime, shape.exponent);
     double u = growthTime - std::floor(growthTime);
+    if (shape.table.size() >= 2) {
+        double x = u * double(shape.table.size() - 1);
+        size_t i = std::min(static_cast<size_t>(x), shape.table.size() - 2);
+        return shape.table[i] + (x - double(i)) * (shape.table[i + 1] - shape.table[i]);
+    }
+    if (shape.share <= 0) return lateWoodFraction(growthTime, shape.exponent);
     double start = 1 - shape.share;
     return smoothstep(start - 0.5 * shape.transition, start + 0.5 * shape.transition, u);
 }

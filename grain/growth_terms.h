@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "grain/grain_params.h"
 #include "util/vec3.h"
@@ -113,8 +114,15 @@ struct LateWoodShape {
     double exponent = 6;
     double share = 0;
     double transition = 0.05;
+    /// A measured profile (nenrin grain strip): E at evenly spaced ring phases 0 … 1, linearly
+    /// interpolated; overrides the two forms above when it has two or more values.
+    std::vector<double> table;
 };
 double lateWoodFraction(double growthTime, const LateWoodShape& shape);
+/// The shape a grain's colour parameters give.
+inline LateWoodShape lateWoodShape(const ColourParams& c) {
+    return {c.lateWoodExponent, c.lateWoodShare, c.lateWoodTransition, c.lateWoodProfile};
+}
 
 /// Heartwood weight (3.2): 1 for T < Th1 (heartwood), 0 for T > Th2 (sapwood), linear between.
 inline double heartwoodWeight(double growthTime, double start, double end) {

@@ -14,7 +14,7 @@ RingProfile::RingProfile(const LateWoodShape& shape)
     : shape_(shape), values_(kTableSize + 1), cumulative_(kTableSize + 1) {
     for (int i = 0; i < kTableSize; ++i)
         values_[i] = lateWoodFraction(double(i) / kTableSize, shape);
-    values_[kTableSize] = 1;  // the end of the ring (late wood), approached from below
+    values_[kTableSize] = lateWoodFraction(1 - 1e-12, shape);  // the ring's end, from below
     // Simpson's rule on each table interval: E is smooth inside a ring, so the table's own
     // error (~1e-12) is far below anything visible; lookups interpolate linearly between
     // entries, exact for the integral up to O(1/N^2) of E's curvature.

@@ -26,9 +26,7 @@ double microWeight(double size, double cell) {
 WoodShader::WoodShader(const GrowthField& field, Finish finish)
     : field_(&field),
       finish_(std::move(finish)),
-      rings_(LateWoodShape{field.params().colour.lateWoodExponent,
-                           field.params().colour.lateWoodShare,
-                           field.params().colour.lateWoodTransition}),
+      rings_(lateWoodShape(field.params().colour)),
       gradientStep_(std::max(1e-6, 0.02 * field.params().radialSpeed)) {}
 
 void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample> out,

@@ -126,6 +126,29 @@ TEST_F(TreeCliTest, BadRingSeriesAreReportedWithoutOutput) {
     expectInputError(run({"tree", "rings", rwl.string()}), {"--list"});
 }
 
+// `nenrin grain strip`: the photographed strip measured into grain colour keys that bake.
+TEST_F(TreeCliTest, GrainStripWritesColoursThatBake) {
+    fs::path grain = out_ / "strip.json";
+    RunResult r =
+        run({"grain", "strip", (kSourceDir / "data/colour-bars/spruce_bar_color.bmp").string(),
+             "--grain", grainScene("species/norway-spruce.json").string(), "-o", grain.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("42 rings"), std::string::npos) << r.out;
+    nlohmann::json j = nlohmann::json::parse(readText(grain));
+    EXPECT_EQ(j["colour"]["late_wood_profile"].size(), 33u);
+    EXPECT_EQ(j["radial_speed"], 0.003);  // the base grain's other keys are kept
+    r = run({"bake", "slice", "--skeleton", skeletonScene("straight-trunk.json").string(),
+             "--grain", grain.string(), "--plane", "cross", "--at", "1", "--size", "0.1x0.1m",
+             "--res", "16x16", "-o", (out_ / "c.exr").string(), "-q"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
+TEST_F(TreeCliTest, GrainStripRefusesWhatIsNoStrip) {
+    fs::path flat = writeInput("flat.json", "{}");
+    expectInputError(run({"grain", "strip", flat.string(), "-o", (out_ / "g.json").string()}),
+                     {"flat.json", "cannot read the image"});
+}
+
 }  // namespace
 
 namespace {

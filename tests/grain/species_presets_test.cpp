@@ -28,8 +28,7 @@ Lab lab(const nlohmann::json& v) {
 Lab ringMean(const GrainParams& g, double ring) {
     Rgb sum;
     const int n = 2000;
-    const LateWoodShape shape{g.colour.lateWoodExponent, g.colour.lateWoodShare,
-                              g.colour.lateWoodTransition};
+    const LateWoodShape shape = lateWoodShape(g.colour);
     for (int i = 0; i < n; ++i) {
         GrowthSample s;
         s.T = ring + (i + 0.5) / n;
