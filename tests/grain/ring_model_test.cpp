@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "grain/grain_params.h"
 #include "grain/growth_field.h"
 #include "skeleton/ring_series.h"
 #include "skeleton/skeleton_file.h"
@@ -145,6 +146,41 @@ TEST(RingModel, MeasuredSeriesGiveRingRadiiAndMergedRings) {
     EXPECT_GT(zeros, 0);  // co021 641114 has absent rings in its first 300 years
     for (double r = 0; r < radius; r += radius / 997)
         ASSERT_TRUE(std::isfinite(f.evaluate({r, 0, 0}).T)) << r;
+}
+
+// Along a radius of a preset's log (the demo conifer with the Norway spruce preset, between
+// whorls at 0.8 m) the rings are as irregular as the model promises: CV >= 0.2 and lag-1
+// autocorrelation in 0.3 … 0.9, measured on the field's ring boundaries (T crossing whole years).
+TEST(RingModel, APresetsLogHasIrregularPersistentRings) {
+    Skeleton tree =
+        loadSkeletonFile(std::string(NENRIN_SOURCE_DIR) + "/scenes/skeletons/conifer.json");
+    GrainParams grain =
+        loadGrainFile(std::string(NENRIN_SOURCE_DIR) + "/scenes/grain/species/norway-spruce.json");
+    SkeletonIndex index(tree);
+    GrowthField field(index, grain);
+    for (double azimuth : {0.3, 2.1, 4.0}) {
+        Vec3 pith = pithAtHeight(tree, 0.8), dir{std::cos(azimuth), std::sin(azimuth), 0};
+        std::vector<double> boundaries;
+        double previous = field.evaluate(pith).T;
+        for (int i = 1; i < 4000; ++i) {
+            double r = i * 0.00005;
+            double T = field.evaluate(pith + dir * r).T;
+            if (T > grain.fellingTime) break;
+            if (std::floor(T) > std::floor(previous)) boundaries.push_back(r);
+            previous = T;
+        }
+        std::vector<double> widths;
+        for (size_t k = 1; k < boundaries.size(); ++k)
+            widths.push_back(boundaries[k] - boundaries[k - 1]);
+        ASSERT_GT(widths.size(), 20u) << azimuth;
+        RingStatistics s = ringStatistics(widths);
+        std::printf(
+            "conifer + norway-spruce at 0.8 m, azimuth %.1f: %zu rings, CV %.2f, AR1 %.2f\n",
+            azimuth, widths.size(), s.cv, s.autocorrelation);
+        EXPECT_GE(s.cv, 0.2) << azimuth;
+        EXPECT_GE(s.autocorrelation, 0.3) << azimuth;
+        EXPECT_LE(s.autocorrelation, 0.9) << azimuth;
+    }
 }
 
 }  // namespace
