@@ -629,7 +629,9 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
                 bsdf.fibreStrength = finish.fibreStrength;
                 bsdf.fibreWidth = finish.fibreWidth;
             } else {
-                bsdf.base = kBarkAlbedo;  // past the bark of the felled log
+                // Past the felled log's wood: the shader's bark where it drew one (camera
+                // hits), the plain bark colour otherwise.
+                bsdf.base = wood->albedo == Rgb{} ? kBarkAlbedo : wood->albedo;
             }
             if (path.glue && path.glueCover > 0) {
                 const double* g = path.glue->colour;

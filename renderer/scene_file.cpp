@@ -306,6 +306,13 @@ SceneObject readObject(JsonReader& r, Scene& scene,
         slice.thickness = r.positive("thickness", slice.thickness);
         slice.bark = r.nonNegative("bark", slice.bark);
         slice.maxRadius = r.positive("max_radius", slice.maxRadius);
+        if (auto c = r.object("checks")) {
+            slice.checks = static_cast<int>(c->integer("count", slice.checks, 0, 64));
+            slice.checkDepth = c->inRange("depth", slice.checkDepth, 0, 0.9);
+            slice.checkWidth = c->inRange("width", slice.checkWidth, 0, 0.05);
+            slice.checkSeed = static_cast<uint64_t>(c->integer("seed", 1, 0, 1LL << 53));
+            c->finish();
+        }
         const GrowthField& field = material.wood->field();
         double lo, hi;
         trunkHeightRange(field.skeleton(), lo, hi);

@@ -252,9 +252,11 @@ public:
 
 private:
     static void convert(const WoodSurfaceSample& w, nenrin_shading_result& o) {
-        o.albedo[0] = static_cast<float>(w.albedo.r);
-        o.albedo[1] = static_cast<float>(w.albedo.g);
-        o.albedo[2] = static_cast<float>(w.albedo.b);
+        // The ABI's albedo is black outside the felled log (the host draws its own bark).
+        const Rgb albedo = w.coverage > 0 ? w.albedo : Rgb{};
+        o.albedo[0] = static_cast<float>(albedo.r);
+        o.albedo[1] = static_cast<float>(albedo.g);
+        o.albedo[2] = static_cast<float>(albedo.b);
         o.roughness = static_cast<float>(w.roughness);
         o.fibre[0] = static_cast<float>(w.fibre.x);
         o.fibre[1] = static_cast<float>(w.fibre.y);

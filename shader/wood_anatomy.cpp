@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "shader/value_noise.h"
 #include "util/hash.h"
 
 namespace nenrin {
@@ -29,21 +30,6 @@ double cellRandom(uint64_t seed, uint64_t salt, long long a, long long b, long l
     return uniform01(hashCombine(seed, salt),
                      static_cast<uint64_t>(a) * 0x9E3779B97F4A7C15ull ^ static_cast<uint64_t>(b),
                      static_cast<uint64_t>(c));
-}
-
-/// Value noise in [-1, 1] on a unit lattice, smoothly interpolated (fibre streaks).
-double valueNoise(uint64_t seed, double x, double y, double z) {
-    const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
-    const long long ix = (long long)fx, iy = (long long)fy, iz = (long long)fz;
-    auto s = [](double t) { return t * t * (3 - 2 * t); };
-    const double tx = s(x - fx), ty = s(y - fy), tz = s(z - fz);
-    double v = 0;
-    for (int c = 0; c < 8; ++c) {
-        const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
-        const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
-        v += w * (2 * cellRandom(seed, 11, ix + dx, iy + dy, iz + dz) - 1);
-    }
-    return v;
 }
 
 struct Frame {

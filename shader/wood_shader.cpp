@@ -5,6 +5,7 @@
 
 #include "grain/growth_terms.h"
 #include "grain/wood_colour.h"
+#include "shader/bark.h"
 #include "shader/wood_anatomy.h"
 
 namespace nenrin {
@@ -94,7 +95,7 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
 
         bool outside = felled > 0 && s.T > felled;
         o.coverage = outside ? 0 : 1;
-        o.albedo = outside ? Rgb{}
+        o.albedo = outside ? barkAlbedo(s, treePoints[i])
                            : woodColour(s, treePoints[i], colour, o.lateWood,
                                         microWeight(size, colour.microCellSize));
 

@@ -40,7 +40,7 @@ struct SurfaceFootprint {
 };
 
 struct WoodSurfaceSample {
-    Rgb albedo;                  ///< scene-linear, ring profile filtered over the footprint
+    Rgb albedo;  ///< scene-linear, ring profile filtered over the footprint; the bark outside
     double coverage = 1;         ///< 0 outside the felled log
     double T = 0;                ///< growth time, years
     double knot = 0;             ///< branch share of the junction blend, 0..1

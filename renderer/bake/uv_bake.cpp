@@ -125,7 +125,7 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
         for (size_t k = 0; k < texels.size(); ++k) {
             size_t i = texels[k];
             const WoodSurfaceSample& s = samples[k];
-            Rgb albedo = s.coverage > 0 ? s.albedo : kBarkAlbedo;
+            Rgb albedo = s.coverage > 0 || !(s.albedo == Rgb{}) ? s.albedo : kBarkAlbedo;
             maps.baseColour[4 * i] = float(albedo.r);
             maps.baseColour[4 * i + 1] = float(albedo.g);
             maps.baseColour[4 * i + 2] = float(albedo.b);

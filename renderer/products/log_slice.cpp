@@ -1,9 +1,11 @@
 #include "renderer/products/log_slice.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "renderer/products/cut_plan.h"
+#include "util/hash.h"
 
 namespace nenrin {
 
@@ -19,6 +21,23 @@ TriangleMesh logSliceMesh(const GrowthField& field, const LogSliceParams& params
         double r = std::min(logRadius(field, plan, params.height - half, theta),
                             logRadius(field, plan, params.height + half, theta));
         radius[i] = r + params.bark;
+    }
+    // Drying checks: each a V notch in the outline at a seeded azimuth, its walls the wood
+    // inside (the disc is a fan about the pith, so a radial notch keeps it star-shaped).
+    SplitMix rng(hashCombine(params.checkSeed, 0xc4ec5ull));
+    for (int c = 0; c < params.checks; ++c) {
+        const double centre =
+            2 * std::numbers::pi * (c + 0.3 + 0.4 * rng.uniform()) / std::max(1, params.checks);
+        const double depth = params.checkDepth * (0.6 + 0.8 * rng.uniform());
+        for (int i = 0; i < n; ++i) {
+            double theta = 2 * std::numbers::pi * i / n;
+            double d = std::remainder(theta - centre, 2 * std::numbers::pi);
+            // Half-opening angle at the bark, at least one and a half outline steps.
+            double halfAngle =
+                std::max(0.5 * params.checkWidth / radius[i], 1.5 * 2 * std::numbers::pi / n);
+            double v = 1 - std::abs(d) / halfAngle;
+            if (v > 0) radius[i] *= 1 - depth * v;
+        }
     }
     // Object x = tree x, object z = -tree y (see logSliceTreeFromObject).
     auto rim = [&](int i, double y) {

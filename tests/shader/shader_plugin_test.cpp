@@ -200,9 +200,12 @@ int compare(const std::vector<WoodSurfaceSample>& expected,
     for (size_t i = 0; i < std::min(expected.size(), actual.size()); ++i) {
         const WoodSurfaceSample& e = expected[i];
         const nenrin_shading_result& a = actual[i];
-        check("albedo[0]", i, e.albedo.r, a.albedo[0]);
-        check("albedo[1]", i, e.albedo.g, a.albedo[1]);
-        check("albedo[2]", i, e.albedo.b, a.albedo[2]);
+        // The ABI's albedo is black outside the felled log (docs/plugin.md); the C++ API
+        // gives the bark there.
+        const Rgb albedo = e.coverage > 0 ? e.albedo : Rgb{};
+        check("albedo[0]", i, albedo.r, a.albedo[0]);
+        check("albedo[1]", i, albedo.g, a.albedo[1]);
+        check("albedo[2]", i, albedo.b, a.albedo[2]);
         check("roughness", i, e.roughness, a.roughness);
         check("fibre[0]", i, e.fibre.x, a.fibre[0]);
         check("fibre[1]", i, e.fibre.y, a.fibre[1]);

@@ -99,3 +99,48 @@ TEST(BoardTint, BoardsDifferByAFewDeltaE) {
 
 }  // namespace
 }  // namespace nenrin
+
+#include "renderer/products/log_slice.h"
+#include "skeleton/skeleton_index.h"
+#include "tests/test_trees.h"
+
+namespace nenrin {
+namespace {
+
+// A cookie's drying checks: V notches running in from the bark by about `depth` of the
+// radius, one per check; none with count 0.
+TEST(LogSlice, DryingChecksNotchTheOutline) {
+    Skeleton trunk = test::straightTrunk(10, 0.5);
+    SkeletonIndex index(trunk);
+    GrainParams grain;
+    grain.fellingTime = 30;
+    GrowthField field(index, grain);
+    auto outline = [&](int checks) {
+        LogSliceParams p;
+        p.checks = checks;
+        p.checkDepth = 0.3;
+        TriangleMesh m = logSliceMesh(field, p);
+        std::vector<double> r;
+        for (size_t i = 2; i < m.positions.size(); i += 2)
+            r.push_back(std::hypot(m.positions[i].x, m.positions[i].z));
+        return r;
+    };
+    std::vector<double> plain = outline(0), checked = outline(2);
+    ASSERT_EQ(plain.size(), checked.size());
+    int notched = 0, deepest = 0;
+    double minShare = 1;
+    for (size_t i = 0; i < plain.size(); ++i) {
+        double share = checked[i] / plain[i];
+        notched += share < 0.999;
+        minShare = std::min(minShare, share);
+        deepest += share < 0.9;
+    }
+    EXPECT_GE(notched, 2 * 3);   // each check spans a few outline vertices
+    EXPECT_LE(notched, 2 * 12);  // and stays a crack
+    EXPECT_LT(minShare, 1 - 0.3 * 0.6 + 0.02);
+    EXPECT_GT(minShare, 1 - 0.3 * 1.4 - 0.02);
+    EXPECT_GE(deepest, 2);
+}
+
+}  // namespace
+}  // namespace nenrin
