@@ -17,7 +17,7 @@ namespace nenrin {
 namespace {
 
 struct RingOptions {
-    std::string input, series, skeleton, output;
+    std::string input, series, skeleton, output, latewood;
     bool list = false;
     double meanWidthMm = 0;
 };
@@ -39,7 +39,15 @@ void writeSkeletonWithSeries(const RingOptions& o, const RingSeriesFile& file) {
         throw InputError("command line", "--series",
                          "expected --skeleton S.json and -o OUT.json with --series");
     checkOutputName(o.output, {".json"});
-    const RingSeries& series = file.find(o.series);
+    RingSeries series = file.find(o.series);
+    std::vector<double> shares;
+    if (!o.latewood.empty()) {
+        // FILE is the earlywood of the cores, --latewood their latewood: total widths and
+        // each year's latewood share.
+        RingSeriesFile late = readTucsonRwl(o.latewood);
+        shares = latewoodShares(series, late);
+        series = totalFromEarlyLate(series, late);
+    }
     std::vector<double> widths = ringWidthsMetres(series, o.meanWidthMm, file.path);
 
     // The skeleton file keeps its own layout; only its ring widths are replaced.
@@ -48,6 +56,10 @@ void writeSkeletonWithSeries(const RingOptions& o, const RingSeriesFile& file) {
         throw InputError(o.skeleton, "", "expected a skeleton file (a JSON object)");
     json.erase("ring_series");
     json["ring_widths"] = widths;
+    if (!shares.empty())
+        json["latewood_shares"] = shares;
+    else
+        json.erase("latewood_shares");
     nlohmann::json source = json.contains("source") && json["source"].is_object()
                                 ? json["source"]
                                 : nlohmann::json::object();
@@ -55,7 +67,8 @@ void writeSkeletonWithSeries(const RingOptions& o, const RingSeriesFile& file) {
                              {"series", series.id},
                              {"first_year", series.firstYear},
                              {"last_year", series.lastYear()},
-                             {"mean_width_mm", o.meanWidthMm}};
+                             {"mean_width_mm", o.meanWidthMm},
+                             {"latewood_file", o.latewood}};
     json["source"] = source;
     Skeleton checked = parseSkeleton(json, o.skeleton);  // still a valid skeleton
 
@@ -96,6 +109,9 @@ void addRingSeriesCommand(CLI::App& tree) {
     rings->add_option("--series", o->series, "The series (core) ID to use as ring widths");
     rings->add_option("--skeleton", o->skeleton, "Skeleton file that gets the ring widths");
     rings->add_option("-o,--output", o->output, "Output skeleton file (.json)");
+    rings->add_option("--latewood", o->latewood,
+                      "Latewood file of the same cores: FILE is then their earlywood, and each "
+                      "year gets its own latewood share");
     rings
         ->add_option("--mean-width", o->meanWidthMm,
                      "Scale the series to this mean ring width, mm (0 = as measured)")

@@ -87,6 +87,27 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
                                               : 150;
         widths = generateRingWidths(m, years, m.meanWidth > 0 ? m.meanWidth : params_.radialSpeed);
     }
+    // The profile's own late-wood share S: where its E crosses 1/2.
+    const LateWoodShape shape = lateWoodShape(params_.colour);
+    double lo = 0, hi = 1;
+    for (int i = 0; i < 50; ++i) {
+        double mid = 0.5 * (lo + hi);
+        (lateWoodFraction(mid, shape) < 0.5 ? lo : hi) = mid;
+    }
+    const double profileShare = 1 - 0.5 * (lo + hi);
+    if (!sk.latewoodShares().empty()) {
+        latewoodTiming_ = LatewoodTiming(sk.latewoodShares(), profileShare);
+    } else if (sk.ringWidths().empty() && params_.rings.enabled && !widths.empty()) {
+        // Late wood varies less from year to year than early wood: its share grows in narrow
+        // rings, as the square root of the mean width over the year's.
+        double mean = 0;
+        for (double w : widths) mean += w / double(widths.size());
+        std::vector<double> shares;
+        for (double w : widths)
+            shares.push_back(
+                std::clamp(profileShare * std::sqrt(mean / std::max(w, 1e-9 * mean)), 0.05, 0.9));
+        latewoodTiming_ = LatewoodTiming(std::move(shares), profileShare);
+    }
     if (!widths.empty()) {
         radialGrowth_ = RadialGrowth(widths, params_.radialSpeed);
         // Years faster than Sb shorten thickening times by up to this ratio; the distance

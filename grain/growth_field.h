@@ -23,6 +23,7 @@
 #include "grain/field_segment.h"
 #include "grain/grain_params.h"
 #include "grain/growth_terms.h"
+#include "grain/latewood_timing.h"
 #include "grain/radial_growth.h"
 #include "grain/segment_batch.h"
 #include "skeleton/skeleton_index.h"
@@ -82,6 +83,9 @@ public:
     Vec3 chainDirection(uint32_t chain) const { return chainFrames_[chain].direction; }
 
     GrowthSample evaluate(const Vec3& p) const;
+    /// When each year's late wood begins: the skeleton's measured latewood shares, or the
+    /// ring model's (narrow rings carry relatively more late wood); empty otherwise.
+    const LatewoodTiming& latewoodTiming() const { return latewoodTiming_; }
     /// Evaluates a batch. Spatially coherent batches are much faster than scattered ones: the
     /// index is queried once per batch and candidates are pruned per run of 64 consecutive
     /// points, so order points in compact groups of 64 (8 x 8 tiles) within larger batches.
@@ -125,7 +129,8 @@ private:
     std::vector<ChainFrame> chainFrames_;
     double maxGamma_;            ///< largest branch gamma of the skeleton
     RadialGrowth radialGrowth_;  ///< the skeleton's ring widths; empty = constant speed Sb
-    double speedBound_;          ///< largest radial speed of any path over gamma, m/year
+    LatewoodTiming latewoodTiming_;
+    double speedBound_;  ///< largest radial speed of any path over gamma, m/year
 };
 
 }  // namespace nenrin

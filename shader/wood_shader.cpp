@@ -36,12 +36,14 @@ void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample
     field_->evaluateBatch(treePoints, samples, scratch);
     const ColourParams& colour = field_->params().colour;
     const double felled = field_->params().fellingTime;
+    const LatewoodTiming& timing = field_->latewoodTiming();
     for (size_t i = 0; i < treePoints.size(); ++i) {
         bool outside = felled > 0 && samples[i].T > felled;
         out[i].coverage = outside ? 0 : 1;
-        out[i].albedo = outside ? Rgb{}
-                                : woodColour(samples[i], treePoints[i], colour,
-                                             rings_.lateWood(samples[i].T), 1.0);
+        out[i].albedo = outside
+                            ? Rgb{}
+                            : woodColour(samples[i], treePoints[i], colour,
+                                         rings_.lateWood(timing.profileTime(samples[i].T)), 1.0);
         out[i].T = samples[i].T;
         out[i].knot = samples[i].knot;
     }
@@ -67,6 +69,7 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
 
     const ColourParams& colour = field_->params().colour;
     const double felled = field_->params().fellingTime;
+    const LatewoodTiming& timing = field_->latewoodTiming();
     const double coatAlpha = finish_.coatWeight > 0 ? finish_.coatRoughness : finish_.woodRoughness;
     for (size_t i = 0; i < n; ++i) {
         const GrowthSample& s = scratch.samples[4 * i];
@@ -91,7 +94,10 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
             }
         }
         o.ringFilterWidth = width;
-        o.lateWood = rings_.filtered(s.T, width);
+        // The year's own late-wood share: the profile is read at the warped time.
+        double warp = 1;
+        const double profileT = timing.profileTime(s.T, &warp);
+        o.lateWood = rings_.filtered(profileT, width * warp);
 
         bool outside = felled > 0 && s.T > felled;
         o.coverage = outside ? 0 : 1;
@@ -123,7 +129,8 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
             o.albedo = endGrainAlbedo(
                 o.albedo, std::abs(dot(normalize(footprints[i].normal), o.fibre)), colour);
 
-        double slope = rings_.filteredSlope(s.T, std::max(width, kReliefMinWidth));
+        double slope =
+            rings_.filteredSlope(profileT, std::max(width * warp, kReliefMinWidth)) * warp;
         // Past a footprint of a ring or so the relief averages out: fade it with the filter.
         double fade = 1 / (1 + width * width * 4);
         o.reliefGradient = o.gradientT * (finish_.bumpDepth * slope * fade) + anatomyRelief;

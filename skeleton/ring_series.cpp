@@ -225,6 +225,14 @@ std::vector<double> latewoodShares(const RingSeries& e, const RingSeriesFile& la
     return shares;
 }
 
+RingSeries totalFromEarlyLate(const RingSeries& e, const RingSeriesFile& latewood) {
+    const std::vector<double> shares = latewoodShares(e, latewood);
+    RingSeries total = e;
+    for (size_t i = 0; i < total.widthsMm.size(); ++i)
+        total.widthsMm[i] = e.widthsMm[i] / (1 - std::min(shares[i], 0.99));
+    return total;
+}
+
 RingStatistics ringStatistics(const std::vector<double>& w) {
     RingStatistics r;
     size_t n = w.size();

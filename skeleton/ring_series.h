@@ -41,6 +41,10 @@ RingSeriesFile parseTucsonRwl(const std::string& text, const std::string& path);
 /// series or shares no year with it.
 std::vector<double> latewoodShares(const RingSeries& earlywood, const RingSeriesFile& latewood);
 
+/// The total ring widths of a core from its earlywood series and the latewood file: e + l per
+/// year, e / (1 - the year's share) where the latewood value is missing (latewoodShares).
+RingSeries totalFromEarlyLate(const RingSeries& earlywood, const RingSeriesFile& latewood);
+
 /// Summary statistics of a width series, as dendrochronologists state them.
 struct RingStatistics {
     double mean = 0, cv = 0;     ///< mean width and coefficient of variation (sd / mean)

@@ -74,6 +74,10 @@ public:
     /// that simulate the tree's life (suppression, release) fill it.
     const std::vector<double>& ringWidths() const { return ringWidths_; }
     void setRingWidths(std::vector<double> widths) { ringWidths_ = std::move(widths); }
+    /// Entry k: the share of ring k that is late wood (measured earlywood/latewood pairs).
+    /// Empty = the grain's transition (or its ring model's yearly shares).
+    const std::vector<double>& latewoodShares() const { return latewoodShares_; }
+    void setLatewoodShares(std::vector<double> shares) { latewoodShares_ = std::move(shares); }
 
     const std::vector<SkeletonNode>& nodes() const { return nodes_; }
     const std::vector<SkeletonSegment>& segments() const { return segments_; }
@@ -99,6 +103,7 @@ private:
     std::vector<SkeletonSegment> segments_;
     std::vector<SkeletonChain> chains_;
     std::vector<double> ringWidths_;
+    std::vector<double> latewoodShares_;
 };
 
 /// The pith (trunk axis) position at height z, or the nearest trunk end.

@@ -111,6 +111,16 @@ public:
                 throw root.error("ring_widths", "every ring is 0: expected some growth");
             skeleton_.setRingWidths(std::move(widths));
         }
+        if (root.has("latewood_shares")) {
+            std::vector<double> shares = root.numberList("latewood_shares");
+            for (size_t i = 0; i < shares.size(); ++i)
+                if (!(shares[i] >= 0.01 && shares[i] <= 0.99))
+                    throw root.error("latewood_shares",
+                                     fmt::format("entry {} is {}: expected a share of the ring "
+                                                 "from 0.01 to 0.99",
+                                                 i, shares[i]));
+            skeleton_.setLatewoodShares(std::move(shares));
+        }
         if (auto series = root.object("ring_series")) {
             // A measured series from a Tucson .rwl file, relative to this skeleton file.
             std::string name = series->string("file", "");

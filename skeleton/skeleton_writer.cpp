@@ -99,6 +99,7 @@ nlohmann::json skeletonToJson(const Skeleton& skeleton, const SkeletonFileInfo& 
     j["trunk"] = writer.trunk();
     j["branches"] = writer.branchesOf(0);
     if (!skeleton.ringWidths().empty()) j["ring_widths"] = skeleton.ringWidths();
+    if (!skeleton.latewoodShares().empty()) j["latewood_shares"] = skeleton.latewoodShares();
     return j;
 }
 

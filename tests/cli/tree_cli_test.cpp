@@ -149,6 +149,22 @@ TEST_F(TreeCliTest, GrainStripRefusesWhatIsNoStrip) {
                      {"flat.json", "cannot read the image"});
 }
 
+TEST_F(TreeCliTest, EarlywoodAndLatewoodFilesGiveYearlyLatewoodShares) {
+    fs::path tree = out_ / "el.json";
+    RunResult r =
+        run({"tree", "rings", (kSourceDir / "data/rings/nm580e.rwl").string(), "--latewood",
+             (kSourceDir / "data/rings/nm580l.rwl").string(), "--series", "BCS05B", "--skeleton",
+             skeletonScene("straight-trunk.json").string(), "-o", tree.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(readText(tree));
+    ASSERT_EQ(j["latewood_shares"].size(), j["ring_widths"].size());
+    double lo = 1, hi = 0;
+    for (double s : j["latewood_shares"]) lo = std::min(lo, s), hi = std::max(hi, s);
+    EXPECT_GT(lo, 0);
+    EXPECT_LT(hi, 1);
+    EXPECT_GT(hi - lo, 0.2);  // measured cores: the share changes from year to year
+}
+
 }  // namespace
 
 namespace {

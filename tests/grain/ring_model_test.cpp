@@ -183,5 +183,44 @@ TEST(RingModel, APresetsLogHasIrregularPersistentRings) {
     }
 }
 
+// Each year's late wood begins at its own share: the profile, read at the warped time, crosses
+// E = 1/2 at 1 - s_k, and ring boundaries stay where they were.
+TEST(LatewoodTiming, EachYearHasItsOwnLateWoodShare) {
+    LateWoodShape shape;  // eq. 6, n = 6
+    double lo = 0, hi = 1;
+    for (int i = 0; i < 60; ++i)
+        ((lateWoodFraction(0.5 * (lo + hi), shape) < 0.5) ? lo : hi) = 0.5 * (lo + hi);
+    const double profileShare = 1 - 0.5 * (lo + hi);
+    LatewoodTiming timing({0.1, 0.5, 0.3}, profileShare);
+    for (int k = 0; k < 3; ++k) {
+        const double s = timing.share(k);
+        EXPECT_NEAR(lateWoodFraction(timing.profileTime(k + 1 - s), shape), 0.5, 1e-9) << k;
+        EXPECT_NEAR(timing.profileTime(k), k, 1e-12);
+        double slope = 0;
+        timing.profileTime(k + 0.4, &slope);
+        EXPECT_GT(slope, 0);
+    }
+}
+
+// The ring model's yearly shares: narrow rings carry relatively more late wood.
+TEST(LatewoodTiming, TheRingModelGivesNarrowRingsMoreLateWood) {
+    GrainParams g;
+    g.radialSpeed = 0.003;
+    g.fellingTime = 80;
+    g.rings = stochastic(9);
+    Skeleton trunk = test::straightTrunk(10, 0.5);
+    SkeletonIndex index(trunk);
+    GrowthField field(index, g);
+    ASSERT_FALSE(field.latewoodTiming().empty());
+    std::vector<double> w = generateRingWidths(g.rings, 81, 0.003), shares;
+    for (int k = 0; k < 81; ++k) shares.push_back(field.latewoodTiming().share(k));
+    RingStatistics s = ringStatistics(shares);
+    EXPECT_GT(s.cv, 0.1);  // the share varies by year
+    double cov = 0, mw = 0, ms = 0;
+    for (int k = 0; k < 81; ++k) mw += w[size_t(k)] / 81, ms += shares[size_t(k)] / 81;
+    for (int k = 0; k < 81; ++k) cov += (w[size_t(k)] - mw) * (shares[size_t(k)] - ms);
+    EXPECT_LT(cov, 0);
+}
+
 }  // namespace
 }  // namespace nenrin

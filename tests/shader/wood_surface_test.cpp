@@ -165,5 +165,30 @@ TEST(WoodSurface, FibresBendAroundAKnot) {
     EXPECT_GT(out[1].fibre.z, 0.999);           // clear wood
 }
 
+// Measured latewood shares (skeleton latewood_shares) move each ring's late-wood band: at
+// phase 0.7 a ring with half its width in late wood is in late wood, one with a tenth is not.
+TEST(WoodSurface, LatewoodSharesMoveTheLateWoodBand) {
+    Skeleton trunk = test::straightTrunk(10, 0.5);
+    trunk.setRingWidths(std::vector<double>(40, 0.004));
+    std::vector<double> shares;
+    for (int k = 0; k < 40; ++k) shares.push_back(k % 2 ? 0.5 : 0.1);
+    trunk.setLatewoodShares(shares);
+    SkeletonIndex index(trunk);
+    GrainParams grain;
+    grain.radialSpeed = 0.004;
+    GrowthField field(index, grain);
+    WoodShader shader(field);
+    for (int k = 10; k < 14; ++k) {
+        std::vector<Vec3> p{{(k + 0.7) * 0.004, 0, 0}};
+        std::vector<WoodSurfaceSample> out(1);
+        WoodScratch scratch;
+        shader.evaluateSurface(p, {}, out, scratch);
+        if (k % 2)
+            EXPECT_GT(out[0].lateWood, 0.5) << k;
+        else
+            EXPECT_LT(out[0].lateWood, 0.5) << k;
+    }
+}
+
 }  // namespace
 }  // namespace nenrin
