@@ -57,10 +57,13 @@ double tube(const Frame& f, const TubeCell& c, double tPos, double rPos, long lo
     const long long it = (long long)std::floor(tPos / c.tCell);
     const long long ir = (long long)std::floor(rPos / c.rCell) + ring * 1000003;
     // pi/4: an ellipse in its box.
-    *mean = c.probability * 0.785 * (2 * c.half / c.tCell) * (2 * c.half / c.rCell) *
-            (c.runLength / c.zCell);
+    // pi/4 an ellipse in its box, sizes 0.7-1.3 (mean square 1.03), runs 0.5-1 of the length.
+    *mean = c.probability * 0.785 * 1.03 * (2 * c.half / c.tCell) * (2 * c.half / c.rCell) *
+            (0.75 * c.runLength / c.zCell);
     if (cellRandom(seed, salt, it, ir) >= c.probability) return 0;
+    // Each vessel its own size and slightly oval section, so they do not read as stamped.
     const double size = 0.7 + 0.6 * cellRandom(seed, salt + 5, it, ir);
+    const double oval = 0.8 + 0.45 * cellRandom(seed, salt + 6, it, ir);
     const double half = c.half * size;
     const double mt = std::min(0.5, half / c.tCell + 0.02),
                  mr = std::min(0.5, half / c.rCell + 0.02);
@@ -71,14 +74,16 @@ double tube(const Frame& f, const TubeCell& c, double tPos, double rPos, long lo
     // Along the fibre: runs of vessel in cells of zCell, each at its own offset.
     const double zc = f.z + c.zCell * cellRandom(seed, salt + 3, it, ir);
     const long long iz = (long long)std::floor(zc / c.zCell);
-    const double z0 =
-        (iz + (1 - c.runLength / c.zCell) * cellRandom(seed, salt + 4, it, iz)) * c.zCell;
+    const double run = c.runLength * (0.5 + 0.5 * cellRandom(seed, salt + 7, it, iz));
+    const double z0 = (iz + (1 - run / c.zCell) * cellRandom(seed, salt + 4, it, iz)) * c.zCell;
     // The section: an ellipse, its edge softened over the footprint.
     const double dt = tPos - ct, dr = f.scale * (rPos - cr) - f.shear * dt;
-    const double n = std::hypot(dt, dr) / half;
-    const double edge = std::max(0.08, std::max(f.ft, f.fr) / half);
+    const double n = std::hypot(dt / oval, dr * oval) / half;
+    const double edge = std::max(0.2, std::max(f.ft, f.fr) / half);
     const double section = 1 - std::clamp((n - (1 - edge)) / (2 * edge), 0.0, 1.0);
-    const double cov = section * boxCoverage(zc, z0, z0 + c.runLength, f.fz);
+    // Vessel elements taper where a run ends: soften both ends over a fifth of it.
+    const double along = boxCoverage(zc, z0, z0 + run, std::max(f.fz, 0.2 * run));
+    const double cov = section * along;
     if (outward) {
         const double l = std::hypot(dt, dr);
         *outward = l > 0 ? (f.t * dt + f.r * dr) * (1 / l) : Vec3{};
