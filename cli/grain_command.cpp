@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 #include <memory>
 #include <string>
 
@@ -92,14 +91,7 @@ void runStrip(const StripOptions& o) {
                           {"late_wood_lab", {s.late.L, s.late.a, s.late.b}}};
     parseGrain(grain, o.output);  // a valid grain file, or the error says why
 
-    AtomicOutput out(o.output);
-    {
-        std::ofstream f(out.temporaryPath());
-        f << grain.dump(2) << '\n';
-        f.close();
-        if (!f) throw InputError(o.output, "", "cannot write the grain file (disk full?)");
-    }
-    out.commit();
+    writeTextAtomically(o.output, grain.dump(2) + '\n', "grain file");
     fmt::print(
         "{}: {} rings (width CV {:.2f}, lag-1 autocorrelation {:.2f}); early wood "
         "L*a*b* {:.1f}/{:.1f}/{:.1f}, late wood {:.1f}/{:.1f}/{:.1f}\nwrote {}\n",

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
 #include <memory>
 #include <string>
 
@@ -72,14 +71,7 @@ void writeSkeletonWithSeries(const RingOptions& o, const RingSeriesFile& file) {
     json["source"] = source;
     Skeleton checked = parseSkeleton(json, o.skeleton);  // still a valid skeleton
 
-    AtomicOutput out(o.output);
-    {
-        std::ofstream f(out.temporaryPath());
-        f << json.dump(2) << '\n';
-        f.close();
-        if (!f) throw InputError(o.output, "", "cannot write the skeleton file (disk full?)");
-    }
-    out.commit();
+    writeTextAtomically(o.output, json.dump(2) + '\n', "skeleton file");
     double radius = 0;
     for (double w : widths) radius += w;
     fmt::print("wrote {}: series {} ({}-{}, {} rings, {:.1f} mm of radius), {} segments\n",

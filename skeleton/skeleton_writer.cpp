@@ -1,7 +1,6 @@
 #include "skeleton/skeleton_writer.h"
 
 #include <cmath>
-#include <fstream>
 
 #include "util/atomic_output.h"
 #include "util/input_error.h"
@@ -106,13 +105,7 @@ nlohmann::json skeletonToJson(const Skeleton& skeleton, const SkeletonFileInfo& 
 void saveSkeletonFile(const Skeleton& skeleton, const SkeletonFileInfo& info,
                       const std::string& path) {
     nlohmann::json j = skeletonToJson(skeleton, info);
-    AtomicOutput out(path);
-    {
-        std::ofstream f(out.temporaryPath());
-        f << j.dump(1) << '\n';
-        if (!f) throw InputError(path, "", "could not write the skeleton file");
-    }
-    out.commit();
+    writeTextAtomically(path, j.dump(1) + '\n', "skeleton file");
 }
 
 }  // namespace nenrin

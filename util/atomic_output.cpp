@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <system_error>
 
 #include "util/input_error.h"
@@ -46,6 +47,18 @@ void checkOutputName(const std::string& path, const std::vector<std::string>& ex
         throw InputError(path, "",
                          "unsupported output file name: expected a name ending in " + list);
     checkOutputPath(path);
+}
+
+void writeTextAtomically(const std::string& path, const std::string& text,
+                         const std::string& what) {
+    AtomicOutput out(path);
+    {
+        std::ofstream f(out.temporaryPath(), std::ios::binary);
+        f << text;
+        f.close();
+        if (!f) throw InputError(path, "", "cannot write the " + what + " (disk full?)");
+    }
+    out.commit();
 }
 
 AtomicOutput::AtomicOutput(std::string path) : final_(std::move(path)) {

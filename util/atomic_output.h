@@ -21,6 +21,10 @@ void checkOutputName(const std::string& path, const std::vector<std::string>& ex
 /// The extension of `path` in lower case, with its dot ("" when it has none).
 std::string lowerExtension(const std::string& path);
 
+/// Writes `text` to `path` through an AtomicOutput: all of it, or nothing (the old file, if
+/// any, stays). Throws InputError "cannot write the <what> (disk full?)" when the writing fails.
+void writeTextAtomically(const std::string& path, const std::string& text, const std::string& what);
+
 class AtomicOutput {
 public:
     /// Checks that the folder of `path` exists and is writable; throws InputError otherwise.

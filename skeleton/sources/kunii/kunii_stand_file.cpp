@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 
 #include "util/atomic_output.h"
 #include "util/input_error.h"
@@ -272,13 +271,7 @@ Stand standFromJson(const nlohmann::json& json, const std::string& file) {
 
 void saveStandFile(const Stand& stand, const std::string& path) {
     nlohmann::json j = standToJson(stand);
-    AtomicOutput out(path);
-    {
-        std::ofstream f(out.temporaryPath());
-        f << j.dump() << '\n';
-        if (!f) throw InputError(path, "", "could not write the stand file");
-    }
-    out.commit();
+    writeTextAtomically(path, j.dump() + '\n', "stand file");
 }
 
 Stand loadStandFile(const std::string& path) { return standFromJson(parseJsonFile(path), path); }
