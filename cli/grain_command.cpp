@@ -21,10 +21,6 @@ struct StripOptions {
     std::string input, output, base;
 };
 
-double linearFromSrgb(double v) {
-    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-}
-
 /// The strip's colour per column (rows averaged), scene-linear: 8- and 16-bit images are read
 /// as sRGB, float images (EXR) as linear.
 std::vector<Rgb> readStrip(const std::string& path) {
@@ -48,7 +44,7 @@ std::vector<Rgb> readStrip(const std::string& path) {
         for (int y = 0; y < spec.height; ++y) {
             image.getpixel(x, y, px.data(), spec.nchannels);
             Rgb c{px[0], px[1], px[2]};
-            if (srgb) c = {linearFromSrgb(c.r), linearFromSrgb(c.g), linearFromSrgb(c.b)};
+            if (srgb) c = linearFromSrgb(c);
             if (!std::isfinite(c.r + c.g + c.b))
                 throw InputError(path, fmt::format("pixel ({}, {})", x, y), "not a finite colour");
             sum = sum + c;

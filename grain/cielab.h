@@ -35,6 +35,12 @@ inline Rgb linearSrgbFromLab(const Lab& lab) {
             0.0556434 * x - 0.2040259 * y + 1.0572252 * z};
 }
 
+/// Scene-linear from sRGB-encoded components (IEC 61966-2-1): how 8-bit photos are stored.
+inline Rgb linearFromSrgb(const Rgb& c) {
+    auto f = [](double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); };
+    return {f(c.r), f(c.g), f(c.b)};
+}
+
 /// ΔE*ab (CIE 1976): the distance in L*a*b*.
 inline double deltaE(const Lab& p, const Lab& q) {
     return std::sqrt((p.L - q.L) * (p.L - q.L) + (p.a - q.a) * (p.a - q.a) +

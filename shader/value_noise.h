@@ -9,10 +9,11 @@
 
 namespace nenrin {
 
-inline double latticeValue(uint64_t seed, long long x, long long y, long long z) {
-    return uniform01(hashCombine(seed, 11),
-                     static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull ^ static_cast<uint64_t>(y),
-                     static_cast<uint64_t>(z));
+/// A uniform [0, 1) number for lattice cell (a, b, c) of a seeded, salted pattern.
+inline double cellRandom(uint64_t seed, uint64_t salt, long long a, long long b, long long c = 0) {
+    return uniform01(hashCombine(seed, salt),
+                     static_cast<uint64_t>(a) * 0x9E3779B97F4A7C15ull ^ static_cast<uint64_t>(b),
+                     static_cast<uint64_t>(c));
 }
 
 inline double valueNoise(uint64_t seed, double x, double y, double z) {
@@ -24,7 +25,7 @@ inline double valueNoise(uint64_t seed, double x, double y, double z) {
     for (int c = 0; c < 8; ++c) {
         const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
         const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
-        v += w * (2 * latticeValue(seed, ix + dx, iy + dy, iz + dz) - 1);
+        v += w * (2 * cellRandom(seed, 11, ix + dx, iy + dy, iz + dz) - 1);
     }
     return v;
 }

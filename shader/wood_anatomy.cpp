@@ -26,12 +26,6 @@ double detail(double footprint, double cell) {
     return 1 - std::clamp((footprint / cell - 0.25) / 0.75, 0.0, 1.0);
 }
 
-double cellRandom(uint64_t seed, uint64_t salt, long long a, long long b, long long c = 0) {
-    return uniform01(hashCombine(seed, salt),
-                     static_cast<uint64_t>(a) * 0x9E3779B97F4A7C15ull ^ static_cast<uint64_t>(b),
-                     static_cast<uint64_t>(c));
-}
-
 struct Frame {
     double rho, theta, z, T, gradT;  // m, rad, m, years, years/m
     double ft, fr, fz;               // footprint extents along tangential, radial, axial (m)

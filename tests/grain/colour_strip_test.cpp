@@ -18,10 +18,6 @@
 namespace nenrin {
 namespace {
 
-double linearFromSrgb(double v) {
-    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-}
-
 std::vector<Rgb> stripColumns(const std::string& path) {
     OIIO::ImageBuf image(path);
     EXPECT_TRUE(image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << image.geterror();
@@ -32,7 +28,7 @@ std::vector<Rgb> stripColumns(const std::string& path) {
         Rgb sum;
         for (int y = 0; y < spec.height; ++y) {
             image.getpixel(x, y, px.data(), spec.nchannels);
-            sum = sum + Rgb{linearFromSrgb(px[0]), linearFromSrgb(px[1]), linearFromSrgb(px[2])};
+            sum = sum + linearFromSrgb({px[0], px[1], px[2]});
         }
         columns[size_t(x)] = sum * (1.0 / spec.height);
     }
