@@ -70,6 +70,7 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
         m.years = static_cast<int>(r->integer("years", 0, 0, 5000));
         m.seed = static_cast<uint64_t>(r->integer("seed", 1, 0, 1LL << 53));
         m.climateSeed = static_cast<uint64_t>(r->integer("climate_seed", 1, 0, 1LL << 53));
+        m.replaceRecorded = r->boolean("replace_recorded", false);
         r->finish();
     }
     if (auto a = root.object("anatomy")) {
@@ -151,7 +152,11 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
         if (auto k = c->object("knots")) {
             cp.knotDarkening = k->inRange("darkening", cp.knotDarkening, 0, 1);
             cp.deadKnotDarkening = k->inRange("dead_darkening", cp.deadKnotDarkening, 0, 1);
+            cp.knotCore = k->inRange("core", cp.knotCore, 0, 1);
             cp.deadKnotRim = k->inRange("dead_rim", cp.deadKnotRim, 0, 1);
+            cp.deadKnotRimWidth = k->inRange("dead_rim_width", cp.deadKnotRimWidth, 0, 0.05);
+            cp.deadKnotChecks = k->inRange("dead_checks", cp.deadKnotChecks, 0, 1);
+            cp.deadKnotCheckWidth = k->inRange("dead_check_width", cp.deadKnotCheckWidth, 0, 0.01);
             cp.knotTint = readRgb(*k, "tint", cp.knotTint, 0);
             cp.deadKnotTint = readRgb(*k, "dead_tint", cp.deadKnotTint, 0);
             k->finish();
@@ -206,7 +211,11 @@ nlohmann::json grainToJson(const GrainParams& g) {
           {"knots",
            {{"darkening", c.knotDarkening},
             {"dead_darkening", c.deadKnotDarkening},
+            {"core", c.knotCore},
             {"dead_rim", c.deadKnotRim},
+            {"dead_rim_width", c.deadKnotRimWidth},
+            {"dead_checks", c.deadKnotChecks},
+            {"dead_check_width", c.deadKnotCheckWidth},
             {"tint", rgbJson(c.knotTint)},
             {"dead_tint", rgbJson(c.deadKnotTint)}}},
           {"end_grain", {{"darkening", c.endGrainDarkening}, {"redness", c.endGrainRedness}}}}},
@@ -222,7 +231,8 @@ nlohmann::json grainToJson(const GrainParams& g) {
                       {"climate_share", m.climateShare},
                       {"years", m.years},
                       {"seed", m.seed},
-                      {"climate_seed", m.climateSeed}};
+                      {"climate_seed", m.climateSeed},
+                      {"replace_recorded", m.replaceRecorded}};
     }
     if (g.anatomy.enabled) {
         const AnatomyParams& m = g.anatomy;

@@ -67,7 +67,12 @@ struct ColourParams {
     uint64_t microSeed = 7;
     double knotDarkening = 0.25;      ///< relative darkening inside living knots
     double deadKnotDarkening = 0.45;  ///< relative darkening inside dead knots
-    double deadKnotRim = 0.5;         ///< relative darkening of the bark rim around dead knots
+    double knotCore = 0.25;           ///< extra darkening at a knot's pith, fading to 0 at its edge
+    double deadKnotRim = 0.5;         ///< relative darkening of the bark ring of dead knots
+    /// m: the bark ring's width (the branch's bark when it died, encased by the trunk).
+    double deadKnotRimWidth = 0.0015;
+    double deadKnotChecks = 0.5;         ///< probability that a dead knot has a drying check
+    double deadKnotCheckWidth = 0.0004;  ///< m: the check's widest opening
     /// Knot wood is compression wood, often resinous: its own hue, a filter on the wood colour
     /// inside living and dead knots (white = the stem's hue, only darkened).
     Rgb knotTint{1, 1, 1};

@@ -79,13 +79,21 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
     speedBound_ = params_.radialSpeed * (1 + params_.taper.nu) * (1 + params_.direction.strength) /
                   (1 - params_.sway.radialJitter);
     std::vector<double> widths = sk.ringWidths();
-    if (widths.empty() && params_.rings.enabled) {
-        // No recorded rings: the grain's stochastic series, as long as the tree lived.
-        const RingModelParams& m = params_.rings;
+    const RingModelParams& m = params_.rings;
+    const bool modelled = m.enabled && (widths.empty() || m.replaceRecorded);
+    if (modelled) {
+        // The grain's stochastic series, as long as the tree lived (or as the recorded one).
+        double mean = m.meanWidth > 0 ? m.meanWidth : params_.radialSpeed;
         int years = m.years > 0               ? m.years
                     : params_.fellingTime > 0 ? static_cast<int>(std::ceil(params_.fellingTime)) + 1
                                               : 150;
-        widths = generateRingWidths(m, years, m.meanWidth > 0 ? m.meanWidth : params_.radialSpeed);
+        if (!widths.empty()) {
+            double sum = 0;
+            for (double w : widths) sum += w;
+            if (m.meanWidth <= 0 && sum > 0) mean = sum / double(widths.size());
+            if (m.years <= 0) years = static_cast<int>(widths.size());
+        }
+        widths = generateRingWidths(m, years, mean);
     }
     // The profile's own late-wood share S: where its E crosses 1/2.
     const LateWoodShape shape = lateWoodShape(params_.colour);
@@ -97,7 +105,7 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
     const double profileShare = 1 - 0.5 * (lo + hi);
     if (!sk.latewoodShares().empty()) {
         latewoodTiming_ = LatewoodTiming(sk.latewoodShares(), profileShare);
-    } else if (sk.ringWidths().empty() && params_.rings.enabled && !widths.empty()) {
+    } else if (modelled && !widths.empty()) {
         // Late wood varies less from year to year than early wood: its share grows in narrow
         // rings, as the square root of the mean width over the year's.
         double mean = 0;
@@ -187,6 +195,39 @@ GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3&
     }
     if (weights > 0) own.T = weighted / weights;
     return own;
+}
+
+double GrowthField::radiusAtTime(uint32_t segmentId, const PathTime& path, double time) const {
+    // The constant-speed thickening years after which a point born at Ta is reached at `time`
+    // (segmentPathTime backwards); they are proportional to the distance along the ray.
+    auto years = [&](double t) {
+        double warped = t - path.Ta;
+        if (!radialGrowth_.empty())
+            warped = (radialGrowth_.cumulative(t) - radialGrowth_.cumulative(path.Ta)) /
+                     params_.radialSpeed;
+        return warped > 0 ? ageUnwarp(warped, params_.age.delta) : 0.0;
+    };
+    const double target = years(time), here = years(path.Ta + path.Tb);
+    if (here > 1e-12 && path.distance > 0) return path.distance * (target / here);
+    return target / segments_[segmentId].inverseSpeed;  // on the axis: the nominal speed
+}
+
+void GrowthField::describeKnot(const GrowthScratch::ChainTerm& t, const Vec3& point,
+                               double trunkTime, GrowthSample& g) const {
+    g.knotChain = static_cast<int32_t>(t.chain);
+    g.knotAxisDistance = t.distance;
+    g.knotOffset = point - t.axisPoint;
+    g.knotAxisDirection = t.axisDirection;
+    // The knot's edge: the branch's share is one half where w (m / x)^p = (m / T1)^p with
+    // x = Tc / sin(alpha), i.e. Tc = T1 sin(alpha) w^(1/p); past the branch's death that time
+    // is a dieback'd one, so undo eq. 10 to get back to the time the growth terms give.
+    const FieldSegment& s = segments_[t.segment];
+    double edge = trunkTime * t.sinAlpha * std::pow(t.weight, 1 / params_.junction.p);
+    if (edge > s.deathTime)
+        edge = s.deathTime * std::pow(edge / s.deathTime, 1 / (1 + s.diebackExponent));
+    g.knotDied = t.dead > 0.5;
+    PathTime path{t.time, t.Ta, t.Tb, t.axisPoint, t.axisDirection, t.distance};
+    g.knotRadius = radiusAtTime(t.segment, path, edge);
 }
 
 bool GrowthField::insideSlabOnly(uint32_t segmentId, const Vec3& lo, const Vec3& hi) const {
@@ -483,7 +524,9 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
             double deathTime = segments_[static_cast<uint32_t>(best.segment)].deathTime;
             double dead =
                 std::isfinite(deathTime) ? smoothstep(deathTime - 0.5, deathTime + 0.5, t1) : 0.0;
-            terms.push_back({tc.chain, bp.T, sinAlpha, bp.distance, dead, weight});
+            terms.push_back({tc.chain, bp.T, sinAlpha, bp.distance, dead, weight,
+                             static_cast<uint32_t>(best.segment), bp.axisPoint, bp.axisDirection,
+                             bp.Ta, bp.Tb});
         }
         if (terms.empty()) continue;
 
@@ -496,19 +539,17 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
         }
         double trunkTerm = junctionTerm(m, t1, p);
         double sum = trunkTerm, dead = 0, strongest = 0;
+        const GrowthScratch::ChainTerm* top = nullptr;
         for (const auto& t : terms) {
             double u = t.weight * junctionTerm(m, t.time / t.sinAlpha, p);
             sum += u;
             dead += t.dead * u;
-            if (u > strongest) {
-                strongest = u;
-                g.knotChain = static_cast<int32_t>(t.chain);
-                g.knotAxisDistance = t.distance;
-            }
+            if (u > strongest) strongest = u, top = &t;
         }
         g.T = junctionCombine(m, sum, p);
         g.knot = (sum - trunkTerm) / sum;
         g.deadKnot = dead / sum;
+        if (top) describeKnot(*top, pt, t1, g);
     }
 }
 

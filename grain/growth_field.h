@@ -41,6 +41,13 @@ struct GrowthSample {
                                   ///< (encased dead knots), 0..knot
     int32_t knotChain = -1;       ///< branch chain with the largest share, -1 if none
     double knotAxisDistance = 0;  ///< distance to that chain's axis (m), 0 without one
+    /// The knot's section radius (m) on the ray from the chain's axis through P: where the
+    /// trunk's growth meets the branch's, the knot's edge (for a dead knot, where its bark
+    /// lies encased). 0 without a chain.
+    double knotRadius = 0;
+    bool knotDied = false;   ///< that chain had died before the trunk reached P
+    Vec3 knotOffset;         ///< P minus the nearest point of that chain's axis (its pith)
+    Vec3 knotAxisDirection;  ///< the chain's tangent there, pointing out of the trunk
 };
 
 /// Reusable per-thread buffers for batch evaluation.
@@ -68,6 +75,9 @@ struct GrowthScratch {
         double time, sinAlpha, distance;
         double dead;    ///< 0 living, 1 dead when the trunk reached P
         double weight;  ///< the reach cut-off weight w_c
+        uint32_t segment;
+        Vec3 axisPoint, axisDirection;
+        double Ta, Tb;  ///< the nearest segment's own (unblended) elongation and thickening
     };
     std::vector<ChainTerm> terms;
 };
@@ -79,8 +89,6 @@ public:
 
     const GrainParams& params() const { return params_; }
     const Skeleton& skeleton() const { return index_->skeleton(); }
-    /// Unit direction of a branch chain at its start (the normal of plane F of eq. 5).
-    Vec3 chainDirection(uint32_t chain) const { return chainFrames_[chain].direction; }
 
     GrowthSample evaluate(const Vec3& p) const;
     /// When each year's late wood begins: the skeleton's measured latewood shares, or the
@@ -107,6 +115,13 @@ public:
 
 private:
     PathTime segmentPathTime(uint32_t segment, const Vec3& p, double t) const;
+    /// Radius (m) on the ray from the segment's axis through P (`path` = segmentPathTime at P)
+    /// at which its path time, before dieback, is `time`: path times scale with distance
+    /// along such a ray through the radial growth and the age warp only, both invertible.
+    double radiusAtTime(uint32_t segment, const PathTime& path, double time) const;
+    /// Fills the sample's knot geometry from the branch path with the largest share.
+    void describeKnot(const GrowthScratch::ChainTerm& term, const Vec3& point, double trunkTime,
+                      GrowthSample& sample) const;
     double branchSearchRadius(double trunkTime) const;
     /// True if every point of the box projects strictly inside the segment's slab and lies
     /// past the previous segment's end and before the next one's start (so the neighbours'

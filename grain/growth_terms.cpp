@@ -113,18 +113,4 @@ double microStructure(const Vec3& p, double cellSize, uint64_t seed) {
     return 2 * uniform01(seed, ix * kSize + iy) - 1;
 }
 
-double knotEmphasis(double knotShare, double deadShare, const ColourParams& c) {
-    // Darkening follows the knot share; how much of it is the dead-knot kind follows the
-    // fraction of the knot that is dead, so the live/dead change along a branch (where the
-    // trunk reached it after its death) shifts the tone without drawing an edge.
-    double inside = smoothstep(0.45, 0.75, knotShare);
-    double deadFraction = knotShare > 0 ? std::clamp(deadShare / knotShare, 0.0, 1.0) : 0.0;
-    double darkening = inside * mix(c.knotDarkening, c.deadKnotDarkening, deadFraction);
-    // The bark of a dead branch is encased by the trunk: a thin dark line on the knot's
-    // boundary (knot share one half), only where the knot is dead.
-    double x = (knotShare - 0.5) / 0.1;
-    double rim = c.deadKnotRim * deadFraction * std::exp(-x * x);
-    return std::clamp(darkening + rim, 0.0, 0.95);
-}
-
 }  // namespace nenrin

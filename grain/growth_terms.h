@@ -156,9 +156,4 @@ double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elon
 /// at p (multiply by the amplitude).
 double microStructure(const Vec3& p, double cellSize, uint64_t seed);
 
-/// Knot emphasis (4.4): relative darkening from the knot share and the dead share (0..1) of a
-/// sample: inside a knot (living and dead knots darken by different amounts), plus a dark
-/// rim of bark around dead (encased) knots.
-double knotEmphasis(double knotShare, double deadShare, const ColourParams& colour);
-
 }  // namespace nenrin

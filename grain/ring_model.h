@@ -28,6 +28,9 @@ struct RingModelParams {
     int years = 0;                 ///< series length; 0 = felling time (or 150 years)
     uint64_t seed = 1;             ///< this tree
     uint64_t climateSeed = 1;      ///< the stand's climate
+    /// Use the model even when the skeleton records ring widths, at their mean width and
+    /// length: for imports that record only a mean (Gran_1's CT log has no ring widths).
+    bool replaceRecorded = false;
 };
 
 /// The widths (m) of `years` years (> 0) with mean width `meanWidth` (> 0, m).

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "grain/growth_terms.h"
+#include "grain/knot_look.h"
 
 namespace nenrin {
 
@@ -11,7 +12,7 @@ Rgb woodColour(const GrowthSample& s, const Vec3& treePoint, const ColourParams&
 }
 
 Rgb woodColour(const GrowthSample& s, const Vec3& treePoint, const ColourParams& c, double e,
-               double microWeight) {
+               double microWeight, double footprint) {
     Rgb colour = mix(c.earlyWood, c.lateWood, e);  // eq. 6: C = E Cd + (1 - E) Cl
     if (c.heartwood) {
         double h = heartwoodWeight(s.T, c.heartwoodStart, c.heartwoodEnd);
@@ -19,14 +20,13 @@ Rgb woodColour(const GrowthSample& s, const Vec3& treePoint, const ColourParams&
     }
     double brightness = 1 + microWeight * c.microAmplitude *
                                 microStructure(treePoint, c.microCellSize, c.microSeed);
-    brightness *= 1 - knotEmphasis(s.knot, s.deadKnot, c);
-    // Knot wood's own hue, where the knot's branch wins the blend (as knotEmphasis darkens).
-    double inside = smoothstep(0.45, 0.75, s.knot);
-    if (inside > 0) {
-        double deadFraction = std::clamp(s.deadKnot / s.knot, 0.0, 1.0);
-        colour = multiply(colour,
-                          mix(Rgb{1, 1, 1}, mix(c.knotTint, c.deadKnotTint, deadFraction), inside));
-    }
+    const KnotLook knot = knotLook(s, c, footprint);
+    brightness *= 1 - knot.darkening;
+    // Knot wood's own hue, where the knot's branch wins the blend.
+    if (knot.tint > 0)
+        colour = multiply(
+            colour,
+            mix(Rgb{1, 1, 1}, mix(c.knotTint, c.deadKnotTint, knot.deadFraction), knot.tint));
     colour = colour * brightness;
     return {std::max(colour.r, 0.0), std::max(colour.g, 0.0), std::max(colour.b, 0.0)};
 }

@@ -90,11 +90,18 @@ double tube(const Frame& f, const TubeCell& c, double tPos, double rPos, long lo
 AnatomySample woodAnatomy(const AnatomyParams& p, const GrowthSample& s, const Vec3& point,
                           const Vec3& gradT, const Vec3& dpdx, const Vec3& dpdy, double diameter,
                           double weight) {
+    return woodAnatomy(p, {point - s.axisPoint, s.axisDirection}, s.T, point, gradT, dpdx, dpdy,
+                       diameter, weight);
+}
+
+AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, double T,
+                          const Vec3& point, const Vec3& gradT, const Vec3& dpdx, const Vec3& dpdy,
+                          double diameter, double weight) {
     AnatomySample out;
     if (!p.enabled || weight <= 0) return out;
-    // The local wood frame about the trunk axis.
-    const Vec3 a = normalize(s.axisDirection);
-    const Vec3 d = point - s.axisPoint;
+    // The local wood frame about the axis.
+    const Vec3 a = normalize(axis.direction);
+    const Vec3& d = axis.offset;
     const Vec3 perp = d - a * dot(d, a);
     Frame f;
     f.rho = length(perp);
@@ -103,7 +110,7 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const GrowthSample& s, const V
     const Vec3 e2 = cross(a, e1);
     f.theta = std::atan2(dot(perp, e2), dot(perp, e1));
     f.z = dot(point, a);
-    f.T = s.T;
+    f.T = T;
     f.gradT = std::max(length(gradT), 1.0);
     f.r = perp * (1 / f.rho);
     f.t = cross(a, f.r);

@@ -24,8 +24,19 @@ struct AnatomySample {
 
 /// `gradT` is grad T at the point (years/m); `dpdx`, `dpdy` the pixel's footprint on the
 /// surface (tree space, m; both zero = a point sample), or `diameter` > 0 for an isotropic one;
-/// `weight` scales everything (0 inside knots, whose fibres run elsewhere).
+/// `weight` scales everything (the shader blends the trunk's and a knot's anatomy with it).
 AnatomySample woodAnatomy(const AnatomyParams& params, const GrowthSample& sample,
+                          const Vec3& treePoint, const Vec3& gradT, const Vec3& dpdx,
+                          const Vec3& dpdy, double diameter = 0, double weight = 1);
+
+/// The axis the anatomy is drawn about: the trunk's in clear wood, a branch's in its knot
+/// (rays then radiate from the knot's pith and fibres run along the branch).
+struct AnatomyAxis {
+    Vec3 offset;     ///< the point minus its nearest axis point
+    Vec3 direction;  ///< the axis tangent there
+};
+/// The same about a given axis, `T` the sample's growth time.
+AnatomySample woodAnatomy(const AnatomyParams& params, const AnatomyAxis& axis, double T,
                           const Vec3& treePoint, const Vec3& gradT, const Vec3& dpdx,
                           const Vec3& dpdy, double diameter = 0, double weight = 1);
 

@@ -103,13 +103,14 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         o.coverage = outside ? 0 : 1;
         o.albedo = outside ? barkAlbedo(s, treePoints[i])
                            : woodColour(s, treePoints[i], colour, o.lateWood,
-                                        microWeight(size, colour.microCellSize));
+                                        microWeight(size, colour.microCellSize), size);
 
         // Fibres follow the growth axis (the branch's inside a knot) and lie in the ring
         // surface: remove the part along grad T, which bends them around knots.
         Vec3 axis = s.axisDirection;
-        if (s.knotChain >= 0 && s.knot > 0) {
-            Vec3 branch = field_->chainDirection(static_cast<uint32_t>(s.knotChain));
+        const bool knotted = s.knotChain >= 0 && s.knot > 0;
+        if (knotted) {
+            Vec3 branch = s.knotAxisDirection;
             if (dot(branch, axis) < 0) branch = -branch;
             axis = normalize(axis * (1 - s.knot) + branch * s.knot);
         }
@@ -117,13 +118,22 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         Vec3 along = g2 > 0 ? axis - o.gradientT * (dot(axis, o.gradientT) / g2) : axis;
         o.fibre = lengthSquared(along) > 1e-12 ? normalize(along) : axis;
         if (field_->params().anatomy.enabled && !outside) {
-            // Fibres, pores and rays, faded inside knots (their fibres follow the branch).
+            // Fibres, pores and rays about the trunk's axis, and inside a knot about its
+            // branch's: there the rays radiate from the knot's pith and the fibres follow it.
             SurfaceFootprint f = footprints.empty() ? SurfaceFootprint{} : footprints[i];
-            AnatomySample a =
-                woodAnatomy(field_->params().anatomy, s, treePoints[i], o.gradientT, f.dpdx, f.dpdy,
-                            f.diameter, 1 - smoothstep(0.3, 0.6, s.knot));
+            const AnatomyParams& anatomy = field_->params().anatomy;
+            const double inKnot = knotted ? smoothstep(0.3, 0.6, s.knot) : 0.0;
+            AnatomySample a = woodAnatomy(anatomy, s, treePoints[i], o.gradientT, f.dpdx, f.dpdy,
+                                          f.diameter, 1 - inKnot);
             o.albedo = multiply(o.albedo, a.filter);
             anatomyRelief = a.reliefGradient;
+            if (inKnot > 0) {
+                AnatomySample k =
+                    woodAnatomy(anatomy, {s.knotOffset, s.knotAxisDirection}, s.T, treePoints[i],
+                                o.gradientT, f.dpdx, f.dpdy, f.diameter, inKnot);
+                o.albedo = multiply(o.albedo, k.filter);
+                anatomyRelief = anatomyRelief + k.reliefGradient;
+            }
         }
         if (!footprints.empty() && !outside && lengthSquared(footprints[i].normal) > 0)
             o.albedo = endGrainAlbedo(

@@ -105,14 +105,6 @@ TEST(GrowthTerms, MicroStructureTilesEvery16CellsAndIgnoresHeight) {
     EXPECT_GT(differing, 10);
 }
 
-TEST(GrowthTerms, KnotEmphasisDarkensKnotsAndDeadRims) {
-    ColourParams c;
-    EXPECT_DOUBLE_EQ(knotEmphasis(0, 0, c), 0);
-    EXPECT_NEAR(knotEmphasis(1, 0, c), c.knotDarkening, 1e-12);
-    EXPECT_GT(knotEmphasis(1, 1, c), knotEmphasis(1, 0, c) - 1e-12);
-    EXPECT_GT(knotEmphasis(0.5, 0.5, c), knotEmphasis(0.5, 0, c));  // dark rim of a dead knot
-}
-
 }  // namespace
 }  // namespace nenrin
 

@@ -1,0 +1,69 @@
+#include "grain/knot_look.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "grain/growth_terms.h"
+#include "util/hash.h"
+
+namespace nenrin {
+
+namespace {
+
+/// Share of [lo, hi] under a box filter of width f centred at x (f = 0: the indicator).
+double bandCoverage(double x, double lo, double hi, double f) {
+    if (f <= 1e-12) return x >= lo && x < hi ? 1.0 : 0.0;
+    double a = std::clamp(x - 0.5 * f, lo, hi), b = std::clamp(x + 0.5 * f, lo, hi);
+    return (b - a) / f;
+}
+
+/// A radial drying check of a dead knot: a crack in the plane through the branch's axis at
+/// the knot's own seeded azimuth, opening from the pith outward and closing at the bark.
+double checkCoverage(const GrowthSample& s, const ColourParams& c, double u, double footprint) {
+    if (c.deadKnotChecks <= 0 || s.knotChain < 0 || u >= 1) return 0;
+    const uint64_t chain = static_cast<uint64_t>(s.knotChain);
+    if (uniform01(c.microSeed, chain, 1) >= c.deadKnotChecks) return 0;
+    const Vec3 a = normalize(s.knotAxisDirection);
+    const Vec3 e1 = normalize(cross(a, std::abs(a.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+    const Vec3 e2 = cross(a, e1);
+    const double phi0 = 2 * std::numbers::pi * uniform01(c.microSeed, chain, 2);
+    const Vec3 crack = e1 * std::cos(phi0) + e2 * std::sin(phi0);
+    const Vec3 across = cross(a, crack);
+    const Vec3& offset = s.knotOffset;
+    if (dot(offset, crack) <= 0) return 0;  // one check, on one side of the pith
+    const double width =
+        c.deadKnotCheckWidth * std::min(1.0, u / 0.3) * (1 - smoothstep(0.8, 1.0, u));
+    const double side = dot(offset, across);
+    return bandCoverage(side, -0.5 * width, 0.5 * width, footprint);
+}
+
+}  // namespace
+
+KnotLook knotLook(const GrowthSample& s, const ColourParams& c, double footprint) {
+    KnotLook out;
+    if (s.knot <= 0) return out;
+    // Darkening follows the knot share; how much of it is the dead-knot kind follows the
+    // fraction of the knot that is dead, so the live/dead change along a branch (where the
+    // trunk reached it after its death) shifts the tone without drawing an edge.
+    const double inside = smoothstep(0.45, 0.75, s.knot);
+    out.deadFraction = std::clamp(s.deadKnot / s.knot, 0.0, 1.0);
+    out.tint = inside;
+    // Where in the knot's section P lies: 0 at its pith, 1 at its edge (or a dead one's bark).
+    const double u = s.knotRadius > 0 ? s.knotAxisDistance / s.knotRadius : 1.0;
+    const double core = c.knotCore * (1 - smoothstep(0.0, 1.0, u));
+    double darkening =
+        inside * (mix(c.knotDarkening, c.deadKnotDarkening, out.deadFraction) + core);
+    // The bark of a dead branch, encased by the trunk: a band just inside the knot's edge,
+    // the same width all round.
+    if (s.knotDied && s.knotRadius > 0) {
+        out.rim = out.deadFraction * bandCoverage(s.knotAxisDistance - s.knotRadius,
+                                                  -c.deadKnotRimWidth, 0, footprint);
+        out.check = out.deadFraction * inside * checkCoverage(s, c, u, footprint);
+    }
+    darkening = 1 - (1 - darkening) * (1 - c.deadKnotRim * out.rim) * (1 - 0.8 * out.check);
+    out.darkening = std::clamp(darkening, 0.0, 0.95);
+    return out;
+}
+
+}  // namespace nenrin

@@ -1,0 +1,25 @@
+#pragma once
+/// How a knot looks (Momoi 4.4, extended): from the knot geometry of a growth sample (its
+/// share, the branch's axis and the knot's section radius) the darkening and tint weight of the
+/// knot wood. Knot wood is compression wood, darker towards its pith (the dark core); a dead,
+/// encased knot is ringed by the branch's bark, a dark band of a stated width in metres just
+/// inside its edge all round, and often opened by a drying check running out from its pith.
+
+#include "grain/grain_params.h"
+#include "grain/growth_field.h"
+
+namespace nenrin {
+
+struct KnotLook {
+    double darkening = 0;     ///< relative darkening, 0..0.95
+    double tint = 0;          ///< weight of the knot tint, 0..1
+    double deadFraction = 0;  ///< how much of the knot is dead, picks dead_tint over tint
+    double rim = 0;           ///< coverage of the dead knot's bark ring, 0..1 (tests, AOVs)
+    double check = 0;         ///< coverage of a drying check, 0..1
+};
+
+/// `footprint` (m) is the pixel's size on the surface: the rim and the checks are box-filtered
+/// over it (0 = a point sample, drawn sharp).
+KnotLook knotLook(const GrowthSample& sample, const ColourParams& colour, double footprint = 0);
+
+}  // namespace nenrin

@@ -1,0 +1,144 @@
+// Knot geometry and look: the knot's section radius the field reports is the edge one sees,
+// for live and dead knots, and a dead knot's bark ring is the stated width all round, ending
+// at that edge; the core is darker than the edge and the ring is filtered over a footprint.
+
+#include "grain/knot_look.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "grain/growth_field.h"
+#include "skeleton/skeleton_index.h"
+#include "tests/test_trees.h"
+
+namespace nenrin {
+namespace {
+
+// A horizontal branch leaving a vertical trunk at 2 m, births by Sa = 0.5 m/year.
+constexpr double kHeight = 2, kSa = 0.5;
+
+Skeleton branchTree(double deathTime) {
+    ChainProperties props;
+    props.gamma = 0.3;
+    props.deathTime = deathTime;
+    props.diebackExponent = 4;
+    return test::trunkWithBranch(kHeight, {1, 0, 0}, 1.0, props, 10, kSa);
+}
+
+/// A cross-section of the branch `x` m out from the trunk's axis: points on a ray at azimuth
+/// phi about the branch, from its axis outward.
+Vec3 onRay(double x, double phi, double r) {
+    return {x, r * std::cos(phi), kHeight + r * std::sin(phi)};
+}
+
+/// Along a ray about the branch: where its share of the blend crosses one half.
+double visibleEdge(const GrowthField& field, double x, double phi) {
+    double lo = 0, hi = 0.05;
+    for (int i = 0; i < 60; ++i) {
+        double mid = 0.5 * (lo + hi);
+        (field.evaluate(onRay(x, phi, mid)).knot > 0.5 ? lo : hi) = mid;
+    }
+    return lo;
+}
+
+GrowthField makeField(const SkeletonIndex& index) {
+    GrainParams grain;
+    grain.junction.p = 4;
+    return GrowthField(index, grain);
+}
+
+// Near its edge the reported radius is the edge one sees; from the middle of the knot it is
+// a few per cent off, because the edge's time is taken from the trunk's time at P.
+void expectRadiusIsVisibleEdge(const GrowthField& field, bool dead) {
+    for (double x : {0.04, 0.06}) {
+        for (int a = 0; a < 12; ++a) {
+            const double phi = 2 * std::numbers::pi * a / 12;
+            const double edge = visibleEdge(field, x, phi);
+            GrowthSample near = field.evaluate(onRay(x, phi, 0.95 * edge));
+            ASSERT_EQ(near.knotChain, 1);
+            EXPECT_EQ(near.knotDied, dead);
+            EXPECT_NEAR(near.knotRadius, edge, 0.01 * edge) << "x " << x << " azimuth " << a;
+            EXPECT_NEAR(near.knotAxisDistance, 0.95 * edge, 1e-12);
+            EXPECT_NEAR(length(near.knotOffset), near.knotAxisDistance, 1e-12);
+            GrowthSample mid = field.evaluate(onRay(x, phi, 0.5 * edge));
+            EXPECT_NEAR(mid.knotRadius, edge, 0.06 * edge) << "x " << x << " azimuth " << a;
+        }
+    }
+}
+
+TEST(KnotLook, LiveKnotRadiusIsTheVisibleEdge) {
+    Skeleton sk = branchTree(kNeverDies);
+    SkeletonIndex index(sk);
+    expectRadiusIsVisibleEdge(makeField(index), false);
+}
+
+TEST(KnotLook, DeadKnotRadiusIsTheVisibleEdge) {
+    Skeleton sk = branchTree(8);
+    SkeletonIndex index(sk);
+    expectRadiusIsVisibleEdge(makeField(index), true);
+}
+
+TEST(KnotLook, DeadKnotBarkRingIsItsStatedWidthAllRound) {
+    Skeleton sk = branchTree(8);
+    SkeletonIndex index(sk);
+    GrowthField field = makeField(index);
+    const ColourParams& c = field.params().colour;
+    const double x = 0.05, step = 2e-5;
+    for (int a = 0; a < 16; ++a) {
+        const double phi = 2 * std::numbers::pi * a / 16;
+        double ring = 0, last = -1;
+        for (double r = 0; r < 0.02; r += step) {
+            KnotLook look = knotLook(field.evaluate(onRay(x, phi, r)), c);
+            if (look.rim > 0.5) ring += step, last = r;
+        }
+        EXPECT_NEAR(ring, c.deadKnotRimWidth, 0.1 * c.deadKnotRimWidth) << "azimuth " << a;
+        EXPECT_NEAR(last, visibleEdge(field, x, phi), 0.05 * c.deadKnotRimWidth) << "azimuth " << a;
+    }
+}
+
+TEST(KnotLook, CoreIsDarkerThanTheEdgeAndClearWoodIsUntouched) {
+    ColourParams c;
+    GrowthSample clear;
+    EXPECT_EQ(knotLook(clear, c).darkening, 0);
+    GrowthSample s;
+    s.knot = 1;
+    s.knotChain = 3;
+    s.knotRadius = 0.006;
+    s.knotAxisDirection = {1, 0, 0};
+    s.knotAxisDistance = 0;
+    const double pith = knotLook(s, c).darkening;
+    s.knotAxisDistance = 0.0059;
+    const double edge = knotLook(s, c).darkening;
+    EXPECT_NEAR(pith - edge, c.knotCore, 0.01);
+    EXPECT_NEAR(edge, c.knotDarkening, 0.01);
+    EXPECT_EQ(knotLook(s, c).rim, 0);  // a live knot has no bark ring
+}
+
+// A footprint wider than the ring spreads it: its coverage integrates to the ring's width.
+TEST(KnotLook, BarkRingIsFilteredOverTheFootprint) {
+    ColourParams c;
+    GrowthSample s;
+    s.knot = s.deadKnot = 0.4;
+    s.knotDied = true;
+    s.knotChain = 1;
+    s.knotRadius = 0.006;
+    s.knotAxisDirection = {1, 0, 0};
+    const double footprint = 0.004, step = 1e-5;
+    double sharp = 0, filtered = 0, peak = 0;
+    for (double r = 0; r < 0.02; r += step) {
+        s.knotAxisDistance = r;
+        s.knotOffset = {0, r, 0};
+        sharp += knotLook(s, c).rim * step;
+        double f = knotLook(s, c, footprint).rim;
+        filtered += f * step;
+        peak = std::max(peak, f);
+    }
+    EXPECT_NEAR(sharp, c.deadKnotRimWidth, 2 * step);
+    EXPECT_NEAR(filtered, c.deadKnotRimWidth, 2 * step);
+    EXPECT_NEAR(peak, c.deadKnotRimWidth / footprint, 0.01);
+}
+
+}  // namespace
+}  // namespace nenrin
