@@ -1,6 +1,7 @@
 #include "shader/wood_anatomy.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -24,6 +25,29 @@ double boxCoverage(double x, double lo, double hi, double f) {
 /// past that, the filtered feature is replaced by its mean (neighbours would enter the box).
 double detail(double footprint, double cell) {
     return 1 - std::clamp((footprint / cell - 0.25) / 0.75, 0.0, 1.0);
+}
+
+/// Near a pith (the trunk's, or a branch's inside its knot) the base ray count would crowd
+/// the rays together: there ray j of the base level only runs from its start radius on. The
+/// rays whose index has t trailing zero bits start near kRaysComplete 2^-t (jittered by
+/// +-25 %), so every other ray starts at half the radius of the next: the spacing stays near
+/// 0.75-1.5 x the ray spacing at any radius, as new rays start where the circumference grows.
+constexpr double kRaysComplete = 0.0375;  // m: 0.75 x the 5 cm at which the base count fits
+
+double rayStart(long long j, uint64_t seed) {
+    const int t = j == 0 ? 62 : std::countr_zero(static_cast<unsigned long long>(j));
+    return kRaysComplete * std::ldexp(1.0, -t) * (0.75 + 0.5 * cellRandom(seed, 205, j, 0));
+}
+
+/// Share of the base level's rays running at radius rho (the mean of rayStart's test).
+double raysStarted(double rho) {
+    double share = 0, weight = 0.5;
+    for (int t = 0; t < 62; ++t, weight *= 0.5) {
+        const double x = (rho / (kRaysComplete * std::ldexp(1.0, -t)) - 0.75) / 0.5;
+        if (x >= 1) return share + 2 * weight;  // this and every later class: all started
+        share += weight * std::max(0.0, x);
+    }
+    return share;
 }
 
 struct Frame {
@@ -180,6 +204,7 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
             const double u = (f.theta + std::numbers::pi) / kTwoPi * double(n);
             const long long j = ((long long)std::floor(u) % n + n) % n;
             if (k > 0 && cellRandom(p.seed, 200 + k, j, 0) < 0.5) continue;
+            if (k == 0 && f.rho < rayStart(j, p.seed)) continue;
             const double centre = std::floor(u) + 0.2 + 0.6 * cellRandom(p.seed, 210 + k, j, 0);
             const double dt = (u - centre) / double(n) * kTwoPi * f.rho;  // m
             const double zc = f.z + zCell * cellRandom(p.seed, 220 + k, j, 0);
@@ -199,8 +224,8 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
                                boxCoverage(rc, r0, r0 + 0.6 * rCell, f.fr);
             const double spacing = kTwoPi * f.rho / double(n);
             // pi/4: the spindle's area against its box; 0.6: the radial share.
-            const double mean =
-                0.785 * 0.6 * (p.rayWidth / spacing) * (p.rayHeight / zCell) * (k ? 0.5 : 1);
+            const double mean = 0.785 * 0.6 * (p.rayWidth / spacing) * (p.rayHeight / zCell) *
+                                (k ? 0.5 : raysStarted(f.rho));
             const double keep = std::min(detail(f.ft, spacing), detail(f.fz, zCell));
             ray = std::max(ray, keep * cov + (1 - keep) * mean);
         }

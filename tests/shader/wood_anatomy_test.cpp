@@ -107,6 +107,75 @@ TEST_F(Anatomy, RaysRunAcrossTheRingsOnEndGrain) {
     EXPECT_LT(radialPart / total, 0.2);  // ~0.64 for an isotropic pattern
 }
 
+/// Share of a map's gradient that runs along the radius about the map's centre (rays that
+/// radiate from it give ~0, an isotropic pattern ~0.64); `rays` gets the mean coverage.
+double radialGradientShare(const std::vector<double>& map, int n, double step, double* rays) {
+    double radialPart = 0, total = 0;
+    *rays = 0;
+    for (int j = 1; j + 1 < n; ++j)
+        for (int i = 1; i + 1 < n; ++i) {
+            double gy = map[size_t(j) * n + i + 1] - map[size_t(j) * n + i - 1];
+            double gz = map[size_t(j + 1) * n + i] - map[size_t(j - 1) * n + i];
+            double y = (i - n / 2) * step, z = (j - n / 2) * step, r = std::hypot(y, z);
+            if (r < 10 * step) continue;  // the pith
+            radialPart += std::abs((gy * y + gz * z) / r);
+            total += std::hypot(gy, gz);
+            *rays += map[size_t(j) * n + i] / (double(n) * n);
+        }
+    return total > 0 ? radialPart / total : 1;
+}
+
+// Inside a knot the anatomy is drawn about the branch (as the shader does with the field's
+// knot frame): on a cut across a horizontal branch its rays radiate from the knot's pith.
+// Drawn about the trunk's axis instead, they would cross the knot as parallel lines.
+TEST(KnotAnatomy, RaysRadiateFromTheKnotsPithOnItsCrossSection) {
+    ChainProperties props;
+    props.gamma = 0.3;
+    Skeleton sk = test::trunkWithBranch(2, {1, 0, 0}, 1.0, props);
+    SkeletonIndex index(sk);
+    GrainParams grain;
+    grain.radialSpeed = 0.004;
+    grain.junction.p = 4;
+    GrowthField field(index, grain);
+    AnatomyParams params;
+    params.enabled = true;
+    params.raySpacing = 0.001;  // as RaysRunAcrossTheRingsOnEndGrain, sampled as finely
+    params.rayWidth = 0.0002;
+    params.rayHeight = 0.01;
+    const double x = 0.06, step = 0.00005;
+    const int n = 200;  // a 1 cm square around the branch's axis, inside its knot
+    std::vector<double> knotFrame(size_t(n) * n), trunkFrame(size_t(n) * n);
+    std::vector<Vec3> points;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+            points.push_back({x, (i - n / 2) * step, 2 + (j - n / 2) * step});
+    std::vector<GrowthSample> samples(points.size());
+    GrowthScratch scratch;
+    field.evaluateBatch(points, samples, scratch);
+    int inKnot = 0;
+    for (size_t k = 0; k < points.size(); ++k) {
+        const GrowthSample& s = samples[k];
+        inKnot += s.knot > 0.6;
+        // grad T in the knot: outward from the branch's axis at the branch's speed.
+        const double r = length(s.knotOffset);
+        Vec3 g = r > 0 ? s.knotOffset * (1 / (r * grain.radialSpeed * props.gamma)) : Vec3{};
+        knotFrame[k] =
+            woodAnatomy(params, {s.knotOffset, s.knotAxisDirection}, s.T, points[k], g, {}, {}).ray;
+        trunkFrame[k] = woodAnatomy(params, s, points[k], g, {}, {}).ray;
+    }
+    ASSERT_GT(inKnot, n * n * 9 / 10);
+    double rays = 0, trunkRays = 0;
+    const double share = radialGradientShare(knotFrame, n, step, &rays);
+    const double trunkShare = radialGradientShare(trunkFrame, n, step, &trunkRays);
+    RecordProperty("radial_share", std::to_string(share));
+    std::printf("knot rays: radial share %.3f (about the trunk's axis: %.3f)\n", share, trunkShare);
+    EXPECT_GT(rays, 0.005);  // rays are there
+    // New rays start as the branch's circumference grows (an octave of radius apart): their
+    // starts are the radial part. The trunk's rays in the same place give more than 0.5.
+    EXPECT_LT(share, 0.35);
+    EXPECT_GT(trunkShare, 0.5);
+}
+
 // Wide footprints: each feature gives way to its mean, so a distant board keeps its tone.
 TEST_F(Anatomy, WideFootprintsGiveTheMeanOfTheSharpFeatures) {
     params_.pores = PoreKind::DiffusePorous;
