@@ -93,6 +93,14 @@ inline double smoothstep(double e0, double e1, double x) {
     return t * t * (3 - 2 * t);
 }
 
+/// Share of [lo, hi] under a box filter of width f centred at x (f = 0: the indicator): a
+/// band of known width drawn filtered over a pixel's footprint.
+inline double boxCoverage(double x, double lo, double hi, double f) {
+    if (f <= 1e-12) return x >= lo && x < hi ? 1.0 : 0.0;
+    double a = std::clamp(x - 0.5 * f, lo, hi), b = std::clamp(x + 0.5 * f, lo, hi);
+    return (b - a) / f;
+}
+
 /// Cut-off weight of a branch path in the junction blend, from its effective time
 /// T_c / sin(alpha) (the quantity eq. 5 compares with T1): 1 below half of reach x the trunk
 /// time, fading smoothly to 0 at reach x the trunk time. With p = 2 and reach = 4 a term is

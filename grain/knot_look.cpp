@@ -11,13 +11,6 @@ namespace nenrin {
 
 namespace {
 
-/// Share of [lo, hi] under a box filter of width f centred at x (f = 0: the indicator).
-double bandCoverage(double x, double lo, double hi, double f) {
-    if (f <= 1e-12) return x >= lo && x < hi ? 1.0 : 0.0;
-    double a = std::clamp(x - 0.5 * f, lo, hi), b = std::clamp(x + 0.5 * f, lo, hi);
-    return (b - a) / f;
-}
-
 /// A radial drying check of a dead knot: a crack in the plane through the branch's axis at
 /// the knot's own seeded azimuth, opening from the pith outward and closing at the bark.
 double checkCoverage(const GrowthSample& s, const ColourParams& c, double u, double footprint) {
@@ -35,7 +28,7 @@ double checkCoverage(const GrowthSample& s, const ColourParams& c, double u, dou
     const double width =
         c.deadKnotCheckWidth * std::min(1.0, u / 0.3) * (1 - smoothstep(0.8, 1.0, u));
     const double side = dot(offset, across);
-    return bandCoverage(side, -0.5 * width, 0.5 * width, footprint);
+    return boxCoverage(side, -0.5 * width, 0.5 * width, footprint);
 }
 
 }  // namespace
@@ -57,8 +50,8 @@ KnotLook knotLook(const GrowthSample& s, const ColourParams& c, double footprint
     // The bark of a dead branch, encased by the trunk: a band just inside the knot's edge,
     // the same width all round.
     if (s.knotDied && s.knotRadius > 0) {
-        out.rim = out.deadFraction * bandCoverage(s.knotAxisDistance - s.knotRadius,
-                                                  -c.deadKnotRimWidth, 0, footprint);
+        out.rim = out.deadFraction *
+                  boxCoverage(s.knotAxisDistance - s.knotRadius, -c.deadKnotRimWidth, 0, footprint);
         out.check = out.deadFraction * inside * checkCoverage(s, c, u, footprint);
     }
     darkening = 1 - (1 - darkening) * (1 - c.deadKnotRim * out.rim) * (1 - 0.8 * out.check);

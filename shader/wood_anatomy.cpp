@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "grain/growth_terms.h"
 #include "shader/value_noise.h"
 #include "util/hash.h"
 
@@ -13,13 +14,6 @@ namespace nenrin {
 namespace {
 
 constexpr double kTwoPi = 2 * std::numbers::pi;
-
-/// Share of [lo, hi] under a box filter of width f centred at x (f = 0: the indicator).
-double boxCoverage(double x, double lo, double hi, double f) {
-    if (f <= 1e-12) return x >= lo && x < hi ? 1.0 : 0.0;
-    double a = std::clamp(x - 0.5 * f, lo, hi), b = std::clamp(x + 0.5 * f, lo, hi);
-    return (b - a) / f;
-}
 
 /// 1 while the footprint is below a quarter of the feature's cell, 0 from a whole cell on:
 /// past that, the filtered feature is replaced by its mean (neighbours would enter the box).
