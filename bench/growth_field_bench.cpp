@@ -8,6 +8,7 @@
 ///   BM_GrowthFieldBrute/<segments>/<threads>  brute-force index (the reference)
 
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -15,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -127,15 +129,38 @@ public:
 }  // namespace
 }  // namespace nenrin
 
+/// The reporter for --benchmark_format / --benchmark_out_format (console, json, csv), with the
+/// contract names: passing our own reporters replaces the library's, so it must honour them.
+std::unique_ptr<benchmark::BenchmarkReporter> contractReporter(std::string_view format,
+                                                               bool colour) {
+    using namespace benchmark;
+    if (format == "json") return std::make_unique<nenrin::ContractNames<JSONReporter>>();
+    if (format == "csv") return std::make_unique<nenrin::ContractNames<CSVReporter>>();
+    return std::make_unique<nenrin::ContractNames<ConsoleReporter>>(
+        colour ? ConsoleReporter::OO_ColorTabular : ConsoleReporter::OO_Tabular);
+}
+
 int main(int argc, char** argv) {
+    // Read before Initialize, which removes the flags it knows from argv.
     bool toFile = false;  // a file reporter is only allowed together with --benchmark_out
-    for (int i = 1; i < argc; ++i)
-        toFile |= std::string_view(argv[i]).starts_with("--benchmark_out=");
+    std::string format = "console", outFormat = "json", colour = "auto";
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view a(argv[i]);
+        auto value = [&](std::string_view flag, std::string& out) {
+            if (a.starts_with(flag)) out = std::string(a.substr(flag.size()));
+        };
+        toFile |= a.starts_with("--benchmark_out=");
+        value("--benchmark_format=", format);
+        value("--benchmark_out_format=", outFormat);
+        value("--benchmark_color=", colour);
+    }
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-    nenrin::ContractNames<benchmark::ConsoleReporter> console;
-    nenrin::ContractNames<benchmark::JSONReporter> json;
-    benchmark::RunSpecifiedBenchmarks(&console, toFile ? &json : nullptr);
+    const bool useColour =
+        colour == "true" || colour == "yes" || (colour == "auto" && isatty(STDOUT_FILENO));
+    auto display = contractReporter(format, useColour);
+    auto file = toFile ? contractReporter(outFormat, false) : nullptr;
+    benchmark::RunSpecifiedBenchmarks(display.get(), file.get());
     benchmark::Shutdown();
     return 0;
 }
