@@ -4,8 +4,17 @@
 /// slice bake does: one index query per call, pruning per 8 x 8 tile) with parallelTiles on 1
 /// or 2 threads, wall time. Trees, indices and sample points are built once and cached: the
 /// timed loop only evaluates.
-///   BM_GrowthField/<segments>/<threads>       Embree index
-///   BM_GrowthFieldBrute/<segments>/<threads>  brute-force index (the reference)
+///   BM_GrowthField/<segments>/<threads>       Embree index and per-chain hierarchies
+///   BM_GrowthFieldBrute/<segments>/<threads>  brute-force index: every query a plain loop
+///                                             (the reference)
+/// and on trees people use, the same sampling through the trunk between 10 % and 90 % of its
+/// height, the square sized to the tree:
+///   BM_GrowthField/gran1/<threads>                the CT-measured Gran_1 log (data/gran1)
+///   BM_GrowthField/hayashi-sugi-order3/<threads>  `nenrin tree hayashi --preset sugi
+///                                                 --max-order 3` (20 years, 34k segments)
+///   BM_GrowthField/kanayama-cherry/<threads>      `nenrin tree kanayama --preset cherry`
+///                                                 (15 years, 16k segments)
+/// and BM_GrowthFieldBrute/... for each.
 
 #include <benchmark/benchmark.h>
 #include <unistd.h>
@@ -24,6 +33,11 @@
 #include "grain/growth_field.h"
 #include "renderer/parallel_tiles.h"
 #include "skeleton/skeleton_index.h"
+#include "skeleton/sources/hayashi/hayashi_conifer.h"
+#include "skeleton/sources/hayashi/hayashi_options.h"
+#include "skeleton/sources/kanayama/kanayama_growth.h"
+#include "skeleton/sources/kanayama/kanayama_species.h"
+#include "skeleton/sources/measured/gran1_import.h"
 #include "skeleton/synthetic_tree.h"
 
 namespace nenrin {
@@ -35,22 +49,26 @@ constexpr int kSections = 8;    // cross-sections through the log
 constexpr double kHalf = 0.15;  // m: half the side of a cross-section
 constexpr double kZ0 = 1, kZ1 = 18;
 
-/// Sample points, tile after tile: each run of kTile * kTile points is one tile.
+/// Sample points, tile after tile: each run of kTile * kTile points is one tile. Sections of
+/// side 2 * half centred on the pith, at kSections heights from z0 to z1.
+std::vector<Vec3> sectionPoints(const Skeleton* skeleton, double half, double z0, double z1) {
+    std::vector<Vec3> p;
+    p.reserve(size_t(kSections) * kSide * kSide);
+    const double step = 2 * half / (kSide - 1);
+    for (int s = 0; s < kSections; ++s) {
+        const double z = z0 + (z1 - z0) * s / (kSections - 1);
+        const Vec3 pith = skeleton ? pithAtHeight(*skeleton, z) : Vec3{0, 0, z};
+        for (int tj = 0; tj < kSide; tj += kTile)
+            for (int ti = 0; ti < kSide; ti += kTile)
+                for (int j = tj; j < tj + kTile; ++j)
+                    for (int i = ti; i < ti + kTile; ++i)
+                        p.push_back({pith.x - half + step * i, pith.y - half + step * j, z});
+    }
+    return p;
+}
+
 const std::vector<Vec3>& bakePoints() {
-    static const std::vector<Vec3> points = [] {
-        std::vector<Vec3> p;
-        p.reserve(size_t(kSections) * kSide * kSide);
-        const double step = 2 * kHalf / (kSide - 1);
-        for (int s = 0; s < kSections; ++s) {
-            const double z = kZ0 + (kZ1 - kZ0) * s / (kSections - 1);
-            for (int tj = 0; tj < kSide; tj += kTile)
-                for (int ti = 0; ti < kSide; ti += kTile)
-                    for (int j = tj; j < tj + kTile; ++j)
-                        for (int i = ti; i < ti + kTile; ++i)
-                            p.push_back({-kHalf + step * i, -kHalf + step * j, z});
-        }
-        return p;
-    }();
+    static const std::vector<Vec3> points = sectionPoints(nullptr, kHalf, kZ0, kZ1);
     return points;
 }
 
@@ -83,10 +101,8 @@ const GrowthField& cachedField(size_t segments, IndexBackend backend) {
     return fixture->field;
 }
 
-void runBake(benchmark::State& state, IndexBackend backend) {
-    const GrowthField& field = cachedField(static_cast<size_t>(state.range(0)), backend);
-    const int threads = static_cast<int>(state.range(1));
-    const std::vector<Vec3>& points = bakePoints();
+void bake(benchmark::State& state, const GrowthField& field, const std::vector<Vec3>& points,
+          int threads) {
     constexpr size_t kBatchSamples = 16 * kTile * kTile;
     const size_t batches = points.size() / kBatchSamples;
     for (auto _ : state) {
@@ -101,6 +117,11 @@ void runBake(benchmark::State& state, IndexBackend backend) {
     state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(points.size()));
 }
 
+void runBake(benchmark::State& state, IndexBackend backend) {
+    bake(state, cachedField(static_cast<size_t>(state.range(0)), backend), bakePoints(),
+         static_cast<int>(state.range(1)));
+}
+
 void BM_GrowthField(benchmark::State& state) { runBake(state, IndexBackend::Embree); }
 void BM_GrowthFieldBrute(benchmark::State& state) { runBake(state, IndexBackend::BruteForce); }
 
@@ -108,6 +129,70 @@ void bakeArgs(benchmark::internal::Benchmark* b) {
     for (int64_t segments : {100, 1000, 10000, 100000})
         for (int64_t threads : {1, 2}) b->Args({segments, threads});
     b->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
+/// A tree people use, with its sample points: made once, on first use.
+struct RealTree {
+    Skeleton skeleton;
+    std::vector<Vec3> points;
+    std::map<IndexBackend, std::unique_ptr<SkeletonIndex>> indices;
+    std::map<IndexBackend, std::unique_ptr<GrowthField>> fields;
+};
+
+Skeleton makeRealSkeleton(const std::string& name) {
+    if (name == "gran1")
+        return importGran1(std::string(NENRIN_SOURCE_DIR) + "/data/gran1/Gran_1").skeleton;
+    if (name == "hayashi-sugi-order3") {
+        HayashiOptions h = hayashiPreset("sugi");
+        h.maxOrder = 3;
+        return growHayashiConifer(h).skeleton;
+    }
+    return growKanayamaTree(kanayamaPreset("cherry"), [](int, int) {}).skeleton;
+}
+
+const GrowthField& realField(const std::string& name, IndexBackend backend,
+                             const std::vector<Vec3>*& points) {
+    static std::map<std::string, std::unique_ptr<RealTree>> cache;
+    auto& tree = cache[name];
+    if (!tree) {
+        tree = std::make_unique<RealTree>();
+        tree->skeleton = makeRealSkeleton(name);
+        const SkeletonChain& trunk = tree->skeleton.chain(0);
+        const Vec3 top =
+            tree->skeleton.end(tree->skeleton.segment(trunk.firstSegment + trunk.segmentCount - 1));
+        const Vec3 base = tree->skeleton.start(tree->skeleton.segment(trunk.firstSegment));
+        // The square spans the trunk's largest radius at the lower section, and some bark.
+        const double half = name == "gran1" ? 0.2 : name == "kanayama-cherry" ? 0.1 : 0.15;
+        const double height = top.z - base.z;
+        tree->points =
+            sectionPoints(&tree->skeleton, half, base.z + 0.1 * height, base.z + 0.9 * height);
+    }
+    auto& field = tree->fields[backend];
+    if (!field) {
+        tree->indices[backend] = std::make_unique<SkeletonIndex>(tree->skeleton, backend);
+        field = std::make_unique<GrowthField>(*tree->indices[backend], GrainParams{});
+    }
+    points = &tree->points;
+    return *field;
+}
+
+void registerRealTrees() {
+    for (const char* name : {"gran1", "hayashi-sugi-order3", "kanayama-cherry"})
+        for (auto [prefix, backend] : {std::pair{"BM_GrowthField", IndexBackend::Embree},
+                                       std::pair{"BM_GrowthFieldBrute", IndexBackend::BruteForce}})
+            for (int threads : {1, 2}) {
+                const std::string tree = name;
+                const IndexBackend b = backend;
+                benchmark::RegisterBenchmark(
+                    (std::string(prefix) + "/" + name + "/" + std::to_string(threads)).c_str(),
+                    [tree, b, threads](benchmark::State& state) {
+                        const std::vector<Vec3>* points = nullptr;
+                        const GrowthField& field = realField(tree, b, points);
+                        bake(state, field, *points, threads);
+                    })
+                    ->UseRealTime()
+                    ->Unit(benchmark::kMillisecond);
+            }
 }
 
 BENCHMARK(BM_GrowthField)->Apply(bakeArgs);
@@ -154,6 +239,7 @@ int main(int argc, char** argv) {
         value("--benchmark_out_format=", outFormat);
         value("--benchmark_color=", colour);
     }
+    nenrin::registerRealTrees();
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     const bool useColour =

@@ -65,6 +65,7 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
     segments_ = flattenSegments(index.skeleton());
     for (FieldSegment& f : segments_) f.inverseSpeed = 1 / (params_.radialSpeed * f.gamma);
     const Skeleton& sk = index.skeleton();
+    chainTrees_ = ChainTrees(segments_, sk.chains(), index.backend() != IndexBackend::BruteForce);
     for (const SkeletonChain& c : sk.chains()) {
         const FieldSegment& first = segments_[c.firstSegment];
         ChainFrame f{first.a, first.axis, kInf, 0};
@@ -262,55 +263,58 @@ double GrowthField::branchSearchRadius(double trunkTime) const {
 
 void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
                                     double halfDiagonal, double maxTrunkTime) const {
-    // Per chain near the tile, keep only what can matter for some point of the tile; every
-    // test here is exact (a bound over the whole box), so results do not depend on tiling.
-    // Distances from the centre come from one float pass; a margin covers float rounding.
+    // Keep the chains near the batch that can matter for some point of the tile; every test
+    // here is exact (a bound over the whole box), so results do not depend on tiling.
     const Box box{lo, hi};
     const Vec3 centre = box.centre();
-    const auto& cands = scratch.branchCandidates;
     auto& chains = scratch.tileChains;
-    auto& kept = scratch.keptSegments;
     chains.clear();
-    kept.reset(centre);
-    scratch.candidates.measureFrom(centre);
-    const float* d2 = scratch.candidates.distances();
-    const uint32_t* candChains = scratch.candidateChains.data();
     const double reachTrunkTime = params_.junction.reach * maxTrunkTime;
-    size_t k = 0;
-    while (k < cands.size()) {
-        const uint32_t chain = candChains[k];
-        const size_t begin = k;
-        double nearest = kInf;
-        for (; k < cands.size() && candChains[k] == chain; ++k)
-            nearest = std::min(nearest, static_cast<double>(d2[k]));
-        nearest = std::sqrt(nearest);
-        const double margin = 1e-5 + 2e-6 * nearest;
-        // 1. The whole box behind the plane F of the branch: sin(alpha) <= 0 everywhere.
+    auto& kept = scratch.keptSegments;
+    kept.reset(centre);
+    for (const uint32_t chain : scratch.candidateChains) {
+        // 1. Born too late to come in under reach x T1 anywhere (sin(alpha) <= 1).
         const ChainFrame& frame = chainFrames_[chain];
+        if (frame.birthBound >= reachTrunkTime) continue;
+        // 2. The whole box behind the plane F of the branch: sin(alpha) <= 0 everywhere.
         bool anyAhead = false;
         for (int corner = 0; corner < 8 && !anyAhead; ++corner)
             anyAhead = dot(box.corner(corner) - frame.start, frame.direction) > 0;
         if (!anyAhead) continue;
         // The largest sin(alpha) over the box (over its bounding ball, seen from Q): the
-        // blend compares T_c / sin(alpha) with T1.
-        Vec3 toCentre = centre - frame.start;
-        double dc = length(toCentre);
+        // blend compares T_c / sin(alpha) with T1. With c the cosine of the angle between QC
+        // and the branch and s the sine of the ball's half-angle, it is cos(angle - spread),
+        // or 1 once the ball reaches the branch's axis.
+        const Vec3 toCentre = centre - frame.start;
+        const double dc = length(toCentre);
         double sinAlphaMax = 1;
         if (dc > halfDiagonal) {
-            double angle = std::acos(std::clamp(dot(toCentre, frame.direction) / dc, -1.0, 1.0));
-            double spread = std::asin(std::min(1.0, halfDiagonal / dc * (1 + 1e-9) + 1e-12));
-            sinAlphaMax = angle - spread > 0 ? std::cos(angle - spread) : 1.0;
+            const double c = std::clamp(dot(toCentre, frame.direction) / dc, -1.0, 1.0);
+            const double s = std::min(1.0, halfDiagonal / dc * (1 + 1e-9) + 1e-12);
+            const double cosSpread = std::sqrt(std::max(0.0, 1 - s * s));
+            if (c < cosSpread)
+                sinAlphaMax = std::min(
+                    1.0, (c * cosSpread + std::sqrt(std::max(0.0, 1 - c * c)) * s) * (1 + 1e-12) +
+                             1e-12);
         }
         const double reachTime = reachTrunkTime * sinAlphaMax;
-        // 2. The chain's path time over the whole box is past reach x T1 x sin(alpha) of every
-        //    point (first with bounds over the whole chain: cheap, then with the kept segments).
-        const double closest = std::max(0.0, nearest - margin - halfDiagonal);
-        auto timeBound = [&](double birth, double gamma) {
-            return birth + ageWarp(closest / (gamma * speedBound_), params_.age.delta);
-        };
-        if (timeBound(frame.birthBound, frame.gammaBound) >= reachTime) continue;
-        // 3. Segments that cannot be any point's nearest: farther from the centre than the
-        //    nearest one plus the box diameter.
+        // 3. The chain's path time over the whole box is past reach x T1 x sin(alpha) of every
+        //    point: from births alone, then from the chain's distance to the box (looked up
+        //    only as far as it could matter), then with the bounds of the kept segments.
+        if (frame.birthBound >= reachTime) continue;
+        const double reachable = frame.gammaBound * speedBound_ *
+                                     ageUnwarp(reachTime - frame.birthBound, params_.age.delta) +
+                                 halfDiagonal;
+        const double limit = reachable * (1 + 1e-9) + 1e-9;
+        const ChainTrees::Nearest nearestToCentre =
+            chainTrees_.nearest(chain, centre, limit * limit);
+        if (nearestToCentre.segment == kNone) continue;
+        const double nearest = std::sqrt(nearestToCentre.distance2);
+        // 4. Segments that cannot be any point's nearest (on a straight run, all but the few
+        //    the box projects onto).
+        auto& ids = scratch.chainSegments;
+        ids.clear();
+        chainTrees_.candidates(chain, lo, hi, static_cast<uint32_t>(nearestToCentre.segment), ids);
         GrowthScratch::TileChain tc;
         tc.chain = chain;
         tc.start = frame.start;
@@ -319,12 +323,9 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
         Box bounds;
         tc.gamma = 0;
         tc.birthBound = kInf;
-        const double keep = nearest + 2 * halfDiagonal + 2 * margin;
-        const double keep2 = keep * keep;
-        for (size_t j = begin; j < k; ++j) {
-            if (d2[j] > keep2) continue;
-            const FieldSegment& s = segments_[cands[j]];
-            kept.push(s.a, s.ab, s.invLength2, cands[j]);
+        for (const uint32_t id : ids) {
+            const FieldSegment& s = segments_[id];
+            kept.push(s.a, s.ab, s.invLength2, id);
             bounds.add(s.a);
             bounds.add(s.a + s.ab);
             tc.gamma = std::max(tc.gamma, s.gammaBound);
@@ -333,7 +334,10 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
         tc.end = kept.size();
         tc.lower = bounds.lo;
         tc.upper = bounds.hi;
-        if (timeBound(tc.birthBound, tc.gamma) >= reachTime) {
+        const double closest = std::max(0.0, nearest - halfDiagonal) * (1 - 1e-9);
+        if (tc.end == tc.begin ||
+            tc.birthBound + ageWarp(closest / (tc.gamma * speedBound_), params_.age.delta) >=
+                reachTime) {
             kept.truncate(tc.begin);
             continue;
         }
@@ -439,19 +443,15 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     }
     if (index_->branches().size() == 0) return;
 
-    auto& branchCands = scratch.branchCandidates;
-    branchCands.clear();
-    index_->branches().gather(centre, branchSearchRadius(maxTrunkTime) + halfDiagonal + 1e-9,
-                              branchCands);
-    if (branchCands.empty()) return;
-    std::sort(branchCands.begin(), branchCands.end());
-    scratch.candidates.reset(centre);
-    scratch.candidateChains.clear();
-    for (uint32_t id : branchCands) {
-        const FieldSegment& s = segments_[id];
-        scratch.candidates.push(s.a, s.ab, s.invLength2, id);
-        scratch.candidateChains.push_back(s.chain);
-    }
+    // The chains with a segment near the batch, in chain order: each is then searched
+    // through its own hierarchy, however finely it is divided.
+    auto& chains = scratch.candidateChains;
+    chains.clear();
+    index_->branchChains().gather(centre, branchSearchRadius(maxTrunkTime) + halfDiagonal + 1e-9,
+                                  chains);
+    if (chains.empty()) return;
+    std::sort(chains.begin(), chains.end());
+    chains.erase(std::unique(chains.begin(), chains.end()), chains.end());
     for (size_t c0 = 0; c0 < n; c0 += kChunk) {
         const size_t c1 = std::min(n, c0 + kChunk);
         const Box chunk = boxOf({pts.data() + c0, c1 - c0});
@@ -475,7 +475,6 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
         auto& terms = scratch.terms;
         terms.clear();
         if (scratch.tileChains.empty()) continue;
-        scratch.keptSegments.measureFrom(pt);
         for (const auto& tc : scratch.tileChains) {
             // alpha: angle between QP and the plane F through the branch start Q,
             // perpendicular to the branch (eq. 5). Behind F the branch does not count.
@@ -493,8 +492,9 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
                      std::max(std::max(tc.lower.y - pt.y, pt.y - tc.upper.y), 0.0),
                      std::max(std::max(tc.lower.z - pt.z, pt.z - tc.upper.z), 0.0)};
             if (dot(out, out) > radius2) continue;
-            const auto& kept = scratch.keptSegments;
-            uint32_t nearest = kept.id(kept.nearest(tc.begin, tc.end, [&](uint32_t k) {
+            auto& kept = scratch.keptSegments;
+            const SegmentBatch::Measured measured = kept.measureFrom(pt, tc.begin, tc.end);
+            uint32_t nearest = kept.id(kept.nearest(tc.begin, tc.end, measured, [&](uint32_t k) {
                 return project(segments_[kept.id(k)], pt).distance2;
             }));
             Best best{static_cast<int32_t>(nearest), project(segments_[nearest], pt).distance2};

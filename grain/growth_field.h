@@ -20,6 +20,7 @@
 #include <span>
 #include <vector>
 
+#include "grain/chain_tree.h"
 #include "grain/field_segment.h"
 #include "grain/grain_params.h"
 #include "grain/growth_terms.h"
@@ -54,7 +55,6 @@ struct GrowthSample {
 struct GrowthScratch {
     std::vector<Vec3> points;
     std::vector<uint32_t> trunkCandidates;
-    std::vector<uint32_t> branchCandidates;
     std::vector<uint32_t> chunkTrunk;  ///< trunk candidates kept for the current chunk
     /// A branch chain near the current tile, with the segments that may matter for it.
     struct TileChain {
@@ -67,8 +67,8 @@ struct GrowthScratch {
     };
     std::vector<TileChain> tileChains;
     SegmentBatch keptSegments;
-    SegmentBatch candidates;                ///< all branch candidates of the batch
-    std::vector<uint32_t> candidateChains;  ///< their chain ids
+    std::vector<uint32_t> candidateChains;  ///< chains with a segment near the batch, sorted
+    std::vector<uint32_t> chainSegments;    ///< one chain's segments near the tile
     std::vector<double> centreDistances;
     struct ChainTerm {
         uint32_t chain;
@@ -136,6 +136,7 @@ private:
     GrainParams params_;
     SwayWaves sway_;
     std::vector<FieldSegment> segments_;  ///< the skeleton's segments, flattened
+    ChainTrees chainTrees_;               ///< each chain's nearest-segment hierarchy
     /// Per chain: Q and the normal of plane F (eq. 5), and bounds over all its segments.
     struct ChainFrame {
         Vec3 start, direction;

@@ -36,37 +36,38 @@ public:
         ids_.resize(n);
     }
     uint32_t id(uint32_t i) const { return ids_[i]; }
-    /// The squared distances of the last measureFrom(), one per segment.
-    const float* distances() const { return distances_.data(); }
 
-    /// Computes the squared distance from p to every segment of the batch, in one vectorised
-    /// pass (cheaper than many short per-chain loops); then call nearest() per range.
-    void measureFrom(const Vec3& p);
+    /// What one vectorised pass over a range found.
+    struct Measured {
+        float smallest;  ///< the smallest squared distance
+        /// Above this, no squared distance can be the smallest in exact arithmetic: the
+        /// smallest plus a bound on float rounding (relative to the origin, it grows with the
+        /// distance D and the longest segment L as ~1e-6 (D^2 + 2 D L); taken 10x larger).
+        float tieLimit;
+    };
+    /// Computes the squared distances from p to the segments [begin, end); then call nearest()
+    /// on the same range.
+    Measured measureFrom(const Vec3& p, uint32_t begin, uint32_t end);
 
     /// Index in [begin, end) of the segment nearest to the point last measured from. Float
-    /// rounding depends on the batch's origin, so near-ties are settled by `exact(index)`
-    /// (the squared distance in double; equal distances go to the first index): the answer
-    /// never depends on how points were batched.
+    /// rounding depends on the batch's origin, so near-ties (below `measured.tieLimit`) are
+    /// settled by `exact(index)` (the squared distance in double; equal distances go to the
+    /// first index): the answer never depends on how points were batched.
     template <class ExactDistance2>
-    uint32_t nearest(uint32_t begin, uint32_t end, ExactDistance2&& exact) const {
+    uint32_t nearest(uint32_t begin, uint32_t end, const Measured& measured,
+                     ExactDistance2&& exact) const {
         const float* d = distances_.data();
-        // One pass for the smallest and second smallest distance: usually they are far apart
-        // and the float answer stands.
-        uint32_t first = begin;
-        float second = std::numeric_limits<float>::infinity();
-        for (uint32_t k = begin + 1; k < end; ++k) {
-            if (d[k] < d[first]) {
-                second = d[first];
-                first = k;
-            } else {
-                second = std::min(second, d[k]);
-            }
+        // Usually one segment is clearly nearest and the float answer stands.
+        const float limit = measured.tieLimit;
+        uint32_t first = end, within = 0;
+        for (uint32_t k = begin; k < end; ++k) {
+            if (d[k] > limit) continue;
+            if (within++ == 0) first = k;
         }
-        const float limit = d[first] * (1 + 1e-4f) + 1e-8f;
-        if (second > limit) return first;
+        if (within == 1) return first;
         uint32_t best = end;
         double bestDistance2 = 0;
-        for (uint32_t k = begin; k < end; ++k) {
+        for (uint32_t k = first; k < end; ++k) {
             if (d[k] > limit) continue;
             double e = exact(k);
             if (best == end || e < bestDistance2) {  // in index order: ties keep the first

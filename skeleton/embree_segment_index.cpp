@@ -32,14 +32,15 @@ void segmentBounds(const RTCBoundsFunctionArguments* args) {
     const auto* soup = static_cast<const SegmentSoup*>(args->geometryUserPtr);
     const Vec3& a = soup->a[args->primID];
     const Vec3& b = soup->b[args->primID];
+    const double r = soup->radius.empty() ? 0.0 : soup->radius[args->primID];
     // Pad by a relative epsilon so float rounding never culls a segment the double-precision
     // distance would accept.
-    auto lo = [](double u, double v) {
-        double m = std::min(u, v);
+    auto lo = [r](double u, double v) {
+        double m = std::min(u, v) - r;
         return static_cast<float>(m - 1e-6 * (1 + std::abs(m)));
     };
-    auto hi = [](double u, double v) {
-        double m = std::max(u, v);
+    auto hi = [r](double u, double v) {
+        double m = std::max(u, v) + r;
         return static_cast<float>(m + 1e-6 * (1 + std::abs(m)));
     };
     RTCBounds* box = args->bounds_o;
@@ -59,7 +60,7 @@ float paddedRadius(double r) {
 bool nearestCallback(RTCPointQueryFunctionArguments* args) {
     auto* st = static_cast<QueryState*>(args->userPtr);
     uint32_t prim = args->primID;
-    double d2 = projectOntoSegment(st->p, st->soup->a[prim], st->soup->b[prim]).distance2;
+    double d2 = soupDistance2(*st->soup, prim, st->p);
     int32_t id = static_cast<int32_t>(st->soup->ids[prim]);
     if (d2 < st->best.distance2 || (d2 == st->best.distance2 && id < st->best.segment)) {
         st->best.distance2 = d2;
@@ -73,7 +74,7 @@ bool nearestCallback(RTCPointQueryFunctionArguments* args) {
 bool gatherCallback(RTCPointQueryFunctionArguments* args) {
     auto* st = static_cast<QueryState*>(args->userPtr);
     uint32_t prim = args->primID;
-    if (projectOntoSegment(st->p, st->soup->a[prim], st->soup->b[prim]).distance2 <= st->radius2)
+    if (soupDistance2(*st->soup, prim, st->p) <= st->radius2)
         st->out->push_back(st->soup->ids[prim]);
     return false;
 }

@@ -32,12 +32,22 @@ public:
     virtual size_t size() const = 0;
 };
 
-/// The segments of one class, copied out of a skeleton for indexing.
+/// The segments of one class, copied out of a skeleton for indexing; or capsules (a segment
+/// and a radius: every point within `radius` of it), whose distance to p is the segment's less
+/// the radius, at least 0.
 struct SegmentSoup {
     std::vector<Vec3> a, b;
-    std::vector<uint32_t> ids;  ///< global segment ids
+    std::vector<uint32_t> ids;   ///< global segment ids (or what the capsules stand for)
+    std::vector<double> radius;  ///< per entry; empty for plain segments
 };
 SegmentSoup collectSegments(const Skeleton& skeleton, SegmentKind kind);
+/// Every branch chain as capsules around runs of at most `runLength` consecutive segments,
+/// each holding its run; ids are chain ids. A gather from these finds the chains near a point
+/// at a cost that does not grow with how finely the chains are divided.
+SegmentSoup collectChainPieces(const Skeleton& skeleton, uint32_t runLength);
+
+/// Squared distance from p to entry i of a soup: to the segment, less the capsule's radius.
+double soupDistance2(const SegmentSoup& soup, size_t i, const Vec3& p);
 
 std::unique_ptr<SegmentIndex> makeBruteForceSegmentIndex(SegmentSoup soup);
 std::unique_ptr<SegmentIndex> makeEmbreeSegmentIndex(SegmentSoup soup);

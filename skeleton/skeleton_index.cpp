@@ -16,7 +16,9 @@ std::unique_ptr<SegmentIndex> makeIndex(SegmentSoup soup, IndexBackend backend) 
 
 SkeletonIndex::SkeletonIndex(const Skeleton& skeleton, IndexBackend backend)
     : skeleton_(&skeleton),
+      backend_(backend),
       trunk_(makeIndex(collectSegments(skeleton, SegmentKind::Trunk), backend)),
-      branches_(makeIndex(collectSegments(skeleton, SegmentKind::Branch), backend)) {}
+      branches_(makeIndex(collectSegments(skeleton, SegmentKind::Branch), backend)),
+      branchChains_(makeIndex(collectChainPieces(skeleton, kChainPieceLength), backend)) {}
 
 }  // namespace nenrin

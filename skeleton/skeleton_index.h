@@ -25,11 +25,20 @@ public:
     const Skeleton& skeleton() const { return *skeleton_; }
     const SegmentIndex& trunk() const { return *trunk_; }
     const SegmentIndex& branches() const { return *branches_; }
+    /// The branch chains, as capsules around runs of kChainPieceLength segments: gather()
+    /// returns chain ids (a chain once per piece near the point).
+    const SegmentIndex& branchChains() const { return *branchChains_; }
+    static constexpr uint32_t kChainPieceLength = 32;
+    /// The backend asked for: users that build structures of their own (the growth field's
+    /// per-chain hierarchies) follow it, so BruteForce stays plain loops throughout.
+    IndexBackend backend() const { return backend_; }
 
 private:
     const Skeleton* skeleton_;
+    IndexBackend backend_;
     std::unique_ptr<SegmentIndex> trunk_;
     std::unique_ptr<SegmentIndex> branches_;
+    std::unique_ptr<SegmentIndex> branchChains_;
 };
 
 }  // namespace nenrin

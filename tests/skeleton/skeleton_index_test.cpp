@@ -38,6 +38,16 @@ TEST(SkeletonIndex, EmbreeAgreesWithBruteForceOnRandomSkeletons) {
             std::sort(a.begin(), a.end());
             std::sort(b.begin(), b.end());
             ASSERT_EQ(a, b) << "gather, query " << q;
+            // Chains: the same from both, and every chain with a segment within r among them.
+            std::vector<uint32_t> ce, cb;
+            embree.branchChains().gather(p, r, ce);
+            brute.branchChains().gather(p, r, cb);
+            std::sort(ce.begin(), ce.end());
+            std::sort(cb.begin(), cb.end());
+            ASSERT_EQ(ce, cb) << "chain gather, query " << q;
+            for (uint32_t segment : b)
+                ASSERT_TRUE(std::binary_search(ce.begin(), ce.end(), sk.segment(segment).chain))
+                    << "chain of segment " << segment << " missing, query " << q;
             // A capped nearest finds nothing beyond its radius.
             NearestSegment capped = embree.branches().nearest(p, 0.05);
             NearestSegment cappedRef = brute.branches().nearest(p, 0.05);
