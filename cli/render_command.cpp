@@ -24,6 +24,8 @@ struct RenderCliOptions {
     std::string png;
     std::string resolution;
     int spp = 0;
+    double noiseThreshold = -1;
+    int minSpp = -1;
     long long seed = -1;
     int threads = 0;
     bool quiet = false;
@@ -44,6 +46,12 @@ void run(const RenderCliOptions& o) {
         s.height = h;
     }
     if (o.spp > 0) s.spp = o.spp;
+    if (o.noiseThreshold >= 0) s.noiseThreshold = o.noiseThreshold;
+    if (o.minSpp >= 0) s.minSpp = o.minSpp;
+    if (s.noiseThreshold > 0 && s.minSpp > s.spp)
+        throw InputError("command line", "--min-spp",
+                         fmt::format("{} is more than the {} samples per pixel allowed (--spp)",
+                                     s.minSpp, s.spp));
     if (o.seed >= 0) s.seed = static_cast<uint64_t>(o.seed);
 
     RenderOptions options;
@@ -56,6 +64,7 @@ void run(const RenderCliOptions& o) {
         {"version", NENRIN_VERSION},
         {"scene", o.scene},
         {"spp", std::to_string(s.spp)},
+        {"noise_threshold", fmt::format("{}", s.noiseThreshold)},
         {"seed", std::to_string(s.seed)},
         {"max_depth", std::to_string(s.maxDepth)},
         {"channels",
@@ -67,8 +76,14 @@ void run(const RenderCliOptions& o) {
         writePreviewPng(o.png, film.rgb, film.width, film.height);
         fmt::print("wrote {} ({})\n", o.png, displayConfigName());
     }
-    fmt::print("{}x{} at {} spp in {:.2f} s: {:.2f} M rays/s ({:.2f} M camera rays/s)\n", s.width,
-               s.height, s.spp, stats.seconds, stats.rays / stats.seconds * 1e-6,
+    const std::string samples =
+        s.noiseThreshold > 0
+            ? fmt::format(
+                  "adaptive sampling (noise threshold {}): {:.1f} spp on average, {} at most",
+                  s.noiseThreshold, double(stats.cameraRays) / (double(s.width) * s.height), s.spp)
+            : fmt::format("{} spp", s.spp);
+    fmt::print("{}x{} at {} in {:.2f} s: {:.2f} M rays/s ({:.2f} M camera rays/s)\n", s.width,
+               s.height, samples, stats.seconds, stats.rays / stats.seconds * 1e-6,
                stats.cameraRays / stats.seconds * 1e-6);
 }
 
@@ -80,8 +95,20 @@ void addRenderCommand(CLI::App& app) {
         "render", "Path-trace a scene (docs/scene-format.md) to an EXR with AOVs");
     cmd->add_option("scene", o->scene, "Scene JSON file")->required();
     cmd->add_option("-o,--output", o->output, "Output EXR (R,G,B,A + AOVs)")->required();
-    cmd->add_option("--spp", o->spp, "Samples per pixel (overrides the scene)")
+    cmd->add_option("--spp", o->spp,
+                    "Samples per pixel (overrides the scene); with --noise-threshold, the most a "
+                    "pixel takes")
         ->check(CLI::Range(1, 1 << 16));
+    cmd->add_option("--noise-threshold", o->noiseThreshold,
+                    "Adaptive sampling: a pixel stops when the standard error of its mean over "
+                    "the square root of its mean (summed over R,G,B) is at most this, for it and "
+                    "its neighbours (e.g. 0.01; 0 = off, every pixel takes --spp; overrides the "
+                    "scene)")
+        ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--min-spp", o->minSpp,
+                    "Adaptive sampling: samples every pixel takes before its noise is estimated "
+                    "(0 = min(spp, 16); overrides the scene)")
+        ->check(CLI::Range(0, 1 << 16));
     cmd->add_option("--res", o->resolution, "Resolution WxH (overrides the scene), e.g. 640x400");
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024))

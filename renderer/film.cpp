@@ -22,9 +22,9 @@ void Film::resize(int w, int h) {
 
 void writeFilmExr(const Film& film, const std::string& path,
                   const std::map<std::string, std::string>& metadata) {
-    const std::vector<std::string> names = {"R",        "G",        "B",    "A",      "albedo.R",
-                                            "albedo.G", "albedo.B", "N.X",  "N.Y",    "N.Z",
-                                            "Z",        "T",        "knot", "lamella"};
+    std::vector<std::string> names = {"R",   "G",   "B",   "A", "albedo.R", "albedo.G", "albedo.B",
+                                      "N.X", "N.Y", "N.Z", "Z", "T",        "knot",     "lamella"};
+    if (!film.samples.empty()) names.push_back("samples");
     const int channels = static_cast<int>(names.size());
     const size_t n = size_t(film.width) * film.height;
     std::vector<float> pixels(n * channels);
@@ -40,6 +40,7 @@ void writeFilmExr(const Film& film, const std::string& path,
         p[11] = film.growthTime[i];
         p[12] = film.knot[i];
         p[13] = film.lamella[i];
+        if (!film.samples.empty()) p[14] = film.samples[i];
     }
     AtomicOutput out(path);
     writeFloatExr(path, out.temporaryPath(), film.width, film.height, names, pixels.data(),

@@ -8,6 +8,7 @@
 ///   T            growth time (years) at the first hit on wood
 ///   knot         knot share (0..1) at the first hit on wood
 ///   lamella      id of the board at the first sample's hit, -1 if none (not laminated)
+///   samples      samples the pixel took (adaptive sampling only)
 /// Each AOV but lamella is the mean over the samples that contribute to it (hits for albedo,
 /// N and Z, wood hits for T and knot); 0 where none did.
 
@@ -21,6 +22,7 @@ struct Film {
     int width = 0, height = 0;
     std::vector<float> rgb, albedo, normal;  ///< 3 per pixel, row 0 at the top
     std::vector<float> alpha, depth, growthTime, knot, lamella;
+    std::vector<float> samples;  ///< per pixel; empty unless sampling was adaptive
 
     void resize(int w, int h);
 };

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <utility>
 
@@ -26,6 +27,8 @@ constexpr int kTileSize = 16;
 /// 1 - this) is shaded per sample.
 constexpr double kKnotRefinement = 0.02;
 constexpr uint32_t kSamplesPerPass = 64;
+/// Adaptive sampling: samples every pixel takes before its noise is first estimated.
+constexpr uint32_t kDefaultMinSpp = 16;
 /// Random dimensions: 0-3 camera (pixel jitter, lens), then kDimsPerBounce per bounce.
 constexpr uint64_t kLightDims = 2;
 /// Bounces are spaced far apart so a scene's light count never makes two bounces share one.
@@ -102,11 +105,13 @@ struct PathState {
 /// Per-pixel AOV accumulators of one tile.
 struct TileAovs {
     std::vector<Rgb> rgb, albedo;
+    std::vector<Rgb> rgbSquares;  ///< per-sample radiance squared (adaptive sampling only)
     std::vector<Vec3> normal;
     std::vector<double> hits, depth, woodHits, growthTime, knot;
     std::vector<int32_t> lamella;
-    explicit TileAovs(size_t n)
+    explicit TileAovs(size_t n, bool squares)
         : rgb(n),
+          rgbSquares(squares ? n : 0),
           albedo(n),
           normal(n),
           hits(n),
@@ -145,6 +150,8 @@ private:
     void shade(uint32_t index, PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood,
                TileAovs& aovs);
     void traceShadows(std::vector<PathState>& paths, TileAovs& aovs);
+    /// Adaptive sampling: raises samplesTarget_ of the pixels that need more samples.
+    void planNextRound(int tw, int th, const TileAovs& aovs, double threshold, uint32_t spp);
 
     const Scene& scene_;
     const RayScene& rays_;
@@ -169,7 +176,10 @@ private:
         Frame frame;
         std::vector<Rgb> lightValue;  ///< BSDF value towards each distant light; r < 0: unknown
     } shared_;
-    std::vector<uint8_t> finished_;  ///< paths that ended this bounce
+    std::vector<uint8_t> finished_;                      ///< paths that ended this bounce
+    std::vector<uint32_t> samplesDone_, samplesTarget_;  ///< per pixel of the tile
+    std::vector<double> noiseRatio_;
+    std::vector<uint8_t> noisy_;
     std::vector<uint64_t> pixelIds_;
     std::vector<double> rotations_;
     std::vector<uint32_t> woodPathIds_, woodOrder_;
@@ -217,67 +227,95 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
         }
     }
 
-    TileAovs aovs(pixels);
-    // Samples go through in passes of at most kSamplesPerPass per pixel, which bounds memory
-    // at any spp; each pixel still adds its samples in order, so sums are deterministic.
+    // Adaptive sampling: rounds. Every pixel first takes minSpp samples; then each pixel whose
+    // own or a neighbour's noise estimate is above the threshold doubles its samples, up to
+    // spp. Decisions use this tile's pixels only (tiles are fixed, whatever the thread count),
+    // and a pixel's k-th sample is the same wherever it is taken: the image is deterministic.
+    const bool adaptive = settings.noiseThreshold > 0;
+    const uint32_t firstRound =
+        adaptive ? std::min(spp, settings.minSpp > 0 ? static_cast<uint32_t>(settings.minSpp)
+                                                     : std::min(spp, kDefaultMinSpp))
+                 : spp;
+    TileAovs aovs(pixels, adaptive);
+    std::vector<uint32_t>& done = samplesDone_;
+    std::vector<uint32_t>& target = samplesTarget_;
+    done.assign(pixels, 0);
+    target.assign(pixels, firstRound);
     std::vector<PathState>& paths = paths_;
-    for (uint32_t s0 = 0; s0 < spp; s0 += kSamplesPerPass) {
-        const uint32_t passSamples = std::min(spp - s0, kSamplesPerPass);
-        // Only the fields a new camera path needs are reset: the state is large, and
-        // resetting all of it for every sample was a measurable share of a render.
-        paths.resize(pixels * passSamples);
-        for (int j = 0; j < th; ++j) {
-            for (int i = 0; i < tw; ++i) {
-                uint32_t p = static_cast<uint32_t>(j * tw + i);
-                uint64_t id = pixelIds[p];
-                for (uint32_t k = 0; k < passSamples; ++k) {
-                    uint32_t s = s0 + k;
-                    PathState& path = paths[p * passSamples + k];
-                    path.throughput = {1, 1, 1};
-                    path.radiance = {};
-                    path.depth = 0;
-                    path.bsdfPdf = 0;
-                    path.alive = true;
-                    path.minRoughness = 0;
-                    path.glue = nullptr;
-                    path.pixel = p;
-                    path.sample = s;
-                    double jx = rotations[2 * p] + s * 0.7548776662466927;
-                    double jy = rotations[2 * p + 1] + s * 0.5698402909980532;
-                    jx -= std::floor(jx);
-                    jy -= std::floor(jy);
-                    path.filmX = x0 + i + jx;
-                    path.filmY = y0 + j + jy;
-                    auto [lu, lv] = lensSample(path, id);
-                    path.ray = camera_.primary(path.filmX, path.filmY, lu, lv);
+    while (true) {
+        // Samples go through in passes of at most kSamplesPerPass per pixel, which bounds
+        // memory at any spp; each pixel still adds its samples in order, so sums are
+        // deterministic.
+        uint32_t longest = 0;
+        for (size_t p = 0; p < pixels; ++p) longest = std::max(longest, target[p] - done[p]);
+        if (longest == 0) break;
+        for (uint32_t k0 = 0; k0 < longest; k0 += kSamplesPerPass) {
+            size_t count = 0;
+            for (size_t p = 0; p < pixels; ++p)
+                count += std::min(target[p] - done[p] - std::min(target[p] - done[p], k0),
+                                  kSamplesPerPass);
+            // Only the fields a new camera path needs are reset: the state is large, and
+            // resetting all of it for every sample was a measurable share of a render.
+            paths.resize(count);
+            size_t next = 0;
+            for (int j = 0; j < th; ++j) {
+                for (int i = 0; i < tw; ++i) {
+                    uint32_t p = static_cast<uint32_t>(j * tw + i);
+                    uint64_t id = pixelIds[p];
+                    const uint32_t s0 = done[p] + k0;
+                    const uint32_t s1 = std::min(target[p], s0 + kSamplesPerPass);
+                    for (uint32_t s = s0; s < s1; ++s) {
+                        PathState& path = paths[next++];
+                        path.throughput = {1, 1, 1};
+                        path.radiance = {};
+                        path.depth = 0;
+                        path.bsdfPdf = 0;
+                        path.alive = true;
+                        path.minRoughness = 0;
+                        path.glue = nullptr;
+                        path.pixel = p;
+                        path.sample = s;
+                        double jx = rotations[2 * p] + s * 0.7548776662466927;
+                        double jy = rotations[2 * p + 1] + s * 0.5698402909980532;
+                        jx -= std::floor(jx);
+                        jy -= std::floor(jy);
+                        path.filmX = x0 + i + jx;
+                        path.filmY = y0 + j + jy;
+                        auto [lu, lv] = lensSample(path, id);
+                        path.ray = camera_.primary(path.filmX, path.filmY, lu, lv);
+                    }
                 }
             }
-        }
-        traceCamera(paths);
-        while (true) {
-            resolveHits(paths, aovs, pixelIds);
-            bool any = false;
-            for (PathState& path : paths) {
-                if (!path.alive) continue;
-                any = true;
-                path.hit = rays_.intersect(path.ray);
-                ++rayCount_;
+            traceCamera(paths);
+            while (true) {
+                resolveHits(paths, aovs, pixelIds);
+                bool any = false;
+                for (PathState& path : paths) {
+                    if (!path.alive) continue;
+                    any = true;
+                    path.hit = rays_.intersect(path.ray);
+                    ++rayCount_;
+                }
+                if (!any) break;
             }
-            if (!any) break;
         }
+        done = target;
+        if (!adaptive) break;
+        planNextRound(tw, th, aovs, settings.noiseThreshold, spp);
     }
 
     // Into the film: this tile's pixels only, so threads never share a pixel.
-    const double inv = 1.0 / spp;
     for (int j = 0; j < th; ++j) {
         for (int i = 0; i < tw; ++i) {
             size_t p = size_t(j) * tw + i;
             size_t f = size_t(y0 + j) * film.width + (x0 + i);
+            const double inv = 1.0 / done[p];
             Rgb c = aovs.rgb[p] * inv;
             film.rgb[3 * f] = float(c.r);
             film.rgb[3 * f + 1] = float(c.g);
             film.rgb[3 * f + 2] = float(c.b);
             film.alpha[f] = float(aovs.hits[p] * inv);
+            if (!film.samples.empty()) film.samples[f] = float(done[p]);
             if (aovs.hits[p] > 0) {
                 double h = 1 / aovs.hits[p];
                 Rgb a = aovs.albedo[p] * h;
@@ -297,8 +335,57 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
             film.lamella[f] = float(aovs.lamella[p]);
         }
     }
-    stats.cameraRays += pixels * spp;
+    for (size_t p = 0; p < pixels; ++p) stats.cameraRays += done[p];
     stats.rays += rayCount_;
+}
+
+void TileRenderer::planNextRound(int tw, int th, const TileAovs& aovs, double threshold,
+                                 uint32_t spp) {
+    // Each pixel's noise: the squared standard error of its mean over its mean, both summed
+    // over R, G and B (the error after a display's gamma, up to a factor). An estimate from a
+    // few samples of a path tracer is itself noisy, so each pixel takes the mean of its 3 x 3
+    // neighbourhood's estimates (nine times the samples) before it is compared.
+    const size_t pixels = size_t(tw) * th;
+    std::vector<double>& ratio = noiseRatio_;
+    ratio.assign(pixels, 0);
+    for (size_t p = 0; p < pixels; ++p) {
+        const double n = samplesDone_[p];
+        if (n < 2) {
+            ratio[p] = std::numeric_limits<double>::infinity();
+            continue;
+        }
+        const Rgb mean = aovs.rgb[p] * (1 / n);
+        const Rgb squares = aovs.rgbSquares[p] * (1 / n);
+        auto variance = [&](double m, double q) { return std::max(0.0, q - m * m) * n / (n - 1); };
+        const double error2 = (variance(mean.r, squares.r) + variance(mean.g, squares.g) +
+                               variance(mean.b, squares.b)) /
+                              n;
+        ratio[p] = error2 / std::max(mean.r + mean.g + mean.b, 1e-4);
+    }
+    std::vector<uint8_t>& noisy = noisy_;
+    noisy.assign(pixels, 0);
+    for (int j = 0; j < th; ++j)
+        for (int i = 0; i < tw; ++i) {
+            double sum = 0;
+            int count = 0;
+            for (int v = std::max(0, j - 1); v <= std::min(th - 1, j + 1); ++v)
+                for (int u = std::max(0, i - 1); u <= std::min(tw - 1, i + 1); ++u, ++count)
+                    sum += ratio[size_t(v) * tw + u];
+            noisy[size_t(j) * tw + i] = sum > threshold * threshold * count;
+        }
+    // A pixel goes on if it or a neighbour is noisy: a single estimate from few samples can
+    // look converged by chance, and noise comes in patches.
+    for (int j = 0; j < th; ++j)
+        for (int i = 0; i < tw; ++i) {
+            const size_t p = size_t(j) * tw + i;
+            bool more = false;
+            for (int dj = -1; dj <= 1 && !more; ++dj)
+                for (int di = -1; di <= 1 && !more; ++di) {
+                    const int u = i + di, v = j + dj;
+                    more = u >= 0 && v >= 0 && u < tw && v < th && noisy[size_t(v) * tw + u];
+                }
+            if (more) samplesTarget_[p] = std::min(spp, 2 * samplesDone_[p]);
+        }
 }
 
 void TileRenderer::traceCamera(std::vector<PathState>& paths) {
@@ -377,7 +464,11 @@ void TileRenderer::traceShadows(std::vector<PathState>& paths, TileAovs& aovs) {
         for (; next < shadows_.size() && shadows_[next].path == i; ++next)
             if (!shadows_[next].blocked)
                 path.radiance = path.radiance + shadows_[next].contribution;
-        if (finished_[i]) aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
+        if (!finished_[i]) continue;
+        aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
+        if (!aovs.rgbSquares.empty())
+            aovs.rgbSquares[path.pixel] =
+                aovs.rgbSquares[path.pixel] + multiply(path.radiance, path.radiance);
     }
 }
 
@@ -780,6 +871,7 @@ Film renderScene(const Scene& scene, const RenderOptions& options, RenderStats& 
     Camera camera(scene.camera, settings.width, settings.height);
     Film film;
     film.resize(settings.width, settings.height);
+    if (settings.noiseThreshold > 0) film.samples.assign(film.alpha.size(), 0);
 
     const int tilesX = (settings.width + kTileSize - 1) / kTileSize;
     const int tilesY = (settings.height + kTileSize - 1) / kTileSize;

@@ -30,9 +30,14 @@ struct CameraSpec {
 
 struct RenderSettings {
     int width = 640, height = 400;
-    int spp = 16;
+    int spp = 16;      ///< samples per pixel; with adaptive sampling, the most a pixel takes
     int maxDepth = 6;  ///< path vertices after the camera
     uint64_t seed = 1;
+    /// Adaptive sampling (0 = off: every pixel takes spp samples). A pixel stops once the
+    /// standard error of its mean, over the square root of its mean (both summed over R, G,
+    /// B), is at most this, in its own and its 8 neighbours' estimates (path_tracer.h).
+    double noiseThreshold = 0;
+    int minSpp = 0;  ///< samples every pixel takes before the first estimate; 0 = min(spp, 16)
 };
 
 enum class LightType { Distant, Point, Rect, Environment };

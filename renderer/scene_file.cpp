@@ -90,6 +90,8 @@ RenderSettings readSettings(JsonReader& r) {
     }
     s.spp = static_cast<int>(r.integer("spp", s.spp, 1, kMaxSpp));
     s.maxDepth = static_cast<int>(r.integer("max_depth", s.maxDepth, 1, 64));
+    s.noiseThreshold = r.inRange("noise_threshold", 0, 0, 1);
+    s.minSpp = static_cast<int>(r.integer("min_spp", 0, 0, kMaxSpp));
     s.seed = static_cast<uint64_t>(r.integer("seed", 1, 0, (1LL << 53)));
     r.finish();
     return s;

@@ -86,6 +86,45 @@ TEST_F(RenderCliTest, AnotherSeedGivesAnotherImageOfTheSameMean) {
     EXPECT_LT(cmp.meanerror, 0.05);  // ...the picture does not
 }
 
+TEST_F(RenderCliTest, AdaptiveSamplingWritesWhereTheSamplesWentAndTheSameBytesOnAnyThreads) {
+    for (const char* threads : {"1", "2"}) {
+        RunResult r =
+            render(kRegressionScene,
+                   {"--res", "40x24", "--spp", "64", "--noise-threshold", "0.1", "--min-spp", "4",
+                    "--threads", threads, "-o", (out_ / (std::string(threads) + ".exr")).string()});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.out.find("spp on average, 64 at most"), std::string::npos) << r.out;
+    }
+    auto a = readImage(out_ / "1.exr"), b = readImage(out_ / "2.exr");
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(a->pixels, b->pixels);
+    const int samples = channelIndex(a->spec, "samples");
+    ASSERT_GE(samples, 0);
+    float lo = 1e9f, hi = 0;
+    for (size_t i = samples; i < a->pixels.size(); i += a->spec.nchannels)
+        lo = std::min(lo, a->pixels[i]), hi = std::max(hi, a->pixels[i]);
+    EXPECT_GE(lo, 4.f);
+    EXPECT_LE(hi, 64.f);
+    EXPECT_GT(hi, lo);  // the samples went where the noise was
+    EXPECT_EQ(a->spec.get_string_attribute("nenrin:noise_threshold"), "0.1");
+}
+
+TEST_F(RenderCliTest, BadAdaptiveSamplingSettingsAreRejected) {
+    const std::string out = (out_ / "x.exr").string();
+    RunResult r = render(kRegressionScene, {"--noise-threshold", "2", "-o", out});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("--noise-threshold"), std::string::npos) << r.err;
+    expectInputError(render(kRegressionScene, {"--noise-threshold", "0.05", "--spp", "8",
+                                               "--min-spp", "16", "-o", out}),
+                     {"--min-spp", "16"});
+    fs::path p = writeScene("s.json", R"({"camera": {"position": [1, 1, 1], "look_at": [0, 0, 0]},
+          "render": {"noise_threshold": -0.1},
+          "materials": [{"name": "m", "type": "diffuse"}],
+          "objects": [{"type": "box", "size": [1, 1, 1], "material": "m"}]})");
+    expectInputError(render(p, {"-o", out}), {"render.noise_threshold"});
+    EXPECT_TRUE(outputFiles().empty());
+}
+
 // The regression reference: tests/data/ref/small-glulam.exr, made by
 //   nenrin render tests/data/scenes/small-glulam.json -o tests/data/ref/small-glulam.exr
 // Thresholds: the same build reproduces it bitwise; another compiler or libm may move a few
