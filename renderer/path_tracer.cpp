@@ -17,6 +17,7 @@
 #include "shader/surface_bsdf.h"
 #include "util/hash.h"
 #include "util/progress.h"
+#include "util/scrambled_sobol.h"
 
 namespace nenrin {
 
@@ -38,6 +39,15 @@ constexpr double kRegularisedRoughness = 0.3;
 /// The counter-based random number for (pixel, sample, dimension).
 double randomAt(uint64_t seed, uint64_t pixel, uint64_t sample, uint64_t dimension) {
     return uniform01(hashCombine(seed, pixel), sample, dimension);
+}
+
+/// Two dimensions that sample one 2D domain together (a lens point, a light point, a BSDF
+/// direction): a scrambled Sobol pair of their own per pixel, so a pixel's samples stratify
+/// each such domain.
+std::pair<double, double> pairAt(uint64_t seed, uint64_t pixel, uint64_t sample,
+                                 uint64_t dimension) {
+    return scrambledSobol2D(static_cast<uint32_t>(sample),
+                            hashCombine(hashCombine(seed, pixel), dimension));
 }
 
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
@@ -105,13 +115,16 @@ struct PathState {
 /// Per-pixel AOV accumulators of one tile.
 struct TileAovs {
     std::vector<Rgb> rgb, albedo;
-    std::vector<Rgb> rgbSquares;  ///< per-sample radiance squared (adaptive sampling only)
+    /// Adaptive sampling only: the radiance of the pixel's first halfCount samples.
+    std::vector<Rgb> rgbHalf;
+    std::vector<uint32_t> halfCount;
     std::vector<Vec3> normal;
     std::vector<double> hits, depth, woodHits, growthTime, knot;
     std::vector<int32_t> lamella;
-    explicit TileAovs(size_t n, bool squares)
+    explicit TileAovs(size_t n, bool adaptive)
         : rgb(n),
-          rgbSquares(squares ? n : 0),
+          rgbHalf(adaptive ? n : 0),
+          halfCount(adaptive ? n : 0),
           albedo(n),
           normal(n),
           hits(n),
@@ -143,7 +156,7 @@ private:
     std::pair<double, double> lensSample(const PathState& path, uint64_t pixelId) const {
         if (!camera_.hasLens()) return {0, 0};
         const uint64_t seed = scene_.settings.seed;
-        return {randomAt(seed, pixelId, path.sample, 2), randomAt(seed, pixelId, path.sample, 3)};
+        return pairAt(seed, pixelId, path.sample, 2);
     }
     /// Fills groupResults_ (one per pixel) and groupStart_ for a camera batch of n entries.
     void shadeCameraWood(const WoodShader& shader, size_t n);
@@ -241,6 +254,7 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
     std::vector<uint32_t>& target = samplesTarget_;
     done.assign(pixels, 0);
     target.assign(pixels, firstRound);
+    if (adaptive) aovs.halfCount.assign(pixels, firstRound / 2);
     std::vector<PathState>& paths = paths_;
     while (true) {
         // Samples go through in passes of at most kSamplesPerPass per pixel, which bounds
@@ -302,6 +316,12 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
         done = target;
         if (!adaptive) break;
         planNextRound(tw, th, aovs, settings.noiseThreshold, spp);
+        // The next estimate compares a pixel's mean with the mean of the samples it has now.
+        for (size_t p = 0; p < pixels; ++p)
+            if (target[p] > done[p]) {
+                aovs.rgbHalf[p] = aovs.rgb[p];
+                aovs.halfCount[p] = done[p];
+            }
     }
 
     // Into the film: this tile's pixels only, so threads never share a pixel.
@@ -341,25 +361,24 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
 
 void TileRenderer::planNextRound(int tw, int th, const TileAovs& aovs, double threshold,
                                  uint32_t spp) {
-    // Each pixel's noise: the squared standard error of its mean over its mean, both summed
-    // over R, G and B (the error after a display's gamma, up to a factor). An estimate from a
-    // few samples of a path tracer is itself noisy, so each pixel takes the mean of its 3 x 3
-    // neighbourhood's estimates (nine times the samples) before it is compared.
+    // Each pixel's noise: how far its mean I over n samples has moved from the mean A of its
+    // first m (half of them): for independent samples E|I - A|^2 = sigma^2 (1/m - 1/n), so
+    // |I - A|^2 m / (n - m) estimates the squared standard error of I, and with stratified
+    // samples it follows their faster convergence. Summed over R, G, B and taken over the mean
+    // (the error after a display's gamma, up to a factor). One such draw is noisy, so each
+    // pixel takes the mean of its 3 x 3 neighbourhood's (27 draws) before it is compared.
     const size_t pixels = size_t(tw) * th;
     std::vector<double>& ratio = noiseRatio_;
     ratio.assign(pixels, 0);
     for (size_t p = 0; p < pixels; ++p) {
-        const double n = samplesDone_[p];
-        if (n < 2) {
+        const double n = samplesDone_[p], m = aovs.halfCount[p];
+        if (m < 1 || n <= m) {
             ratio[p] = std::numeric_limits<double>::infinity();
             continue;
         }
         const Rgb mean = aovs.rgb[p] * (1 / n);
-        const Rgb squares = aovs.rgbSquares[p] * (1 / n);
-        auto variance = [&](double m, double q) { return std::max(0.0, q - m * m) * n / (n - 1); };
-        const double error2 = (variance(mean.r, squares.r) + variance(mean.g, squares.g) +
-                               variance(mean.b, squares.b)) /
-                              n;
+        const Rgb d = mean - aovs.rgbHalf[p] * (1 / m);
+        const double error2 = (d.r * d.r + d.g * d.g + d.b * d.b) * m / (n - m);
         ratio[p] = error2 / std::max(mean.r + mean.g + mean.b, 1e-4);
     }
     std::vector<uint8_t>& noisy = noisy_;
@@ -466,9 +485,8 @@ void TileRenderer::traceShadows(std::vector<PathState>& paths, TileAovs& aovs) {
                 path.radiance = path.radiance + shadows_[next].contribution;
         if (!finished_[i]) continue;
         aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
-        if (!aovs.rgbSquares.empty())
-            aovs.rgbSquares[path.pixel] =
-                aovs.rgbSquares[path.pixel] + multiply(path.radiance, path.radiance);
+        if (!aovs.halfCount.empty() && path.sample < aovs.halfCount[path.pixel])
+            aovs.rgbHalf[path.pixel] = aovs.rgbHalf[path.pixel] + path.radiance;
     }
 }
 
@@ -809,8 +827,8 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
             const Light& light = scene_.lights[li];
             LightSample ls;
             uint64_t d = lightDims + kLightDims * li;
-            if (!sampleLight(light, path.hit.position, rnd(d), rnd(d + 1), ls) ||
-                dot(ls.direction, ng) <= 0)
+            const auto [u, v] = pairAt(settings.seed, pixelId, path.sample, dim + d);
+            if (!sampleLight(light, path.hit.position, u, v, ls) || dot(ls.direction, ng) <= 0)
                 continue;
             Vec3 wiLocal = frame.toLocal(ls.direction);
             // Shared only towards distant lights, whose direction is the same for every
@@ -837,8 +855,10 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
 
     // Continue the path.
     SurfaceBsdf::Sample bs;
-    bool more =
-        path.depth + 1 < settings.maxDepth && bsdf.sample(woLocal, rnd(0), rnd(1), rnd(2), bs);
+    bool more = path.depth + 1 < settings.maxDepth && [&] {
+        const auto [u, v] = pairAt(settings.seed, pixelId, path.sample, dim + 1);
+        return bsdf.sample(woLocal, rnd(0), u, v, bs);
+    }();
     Vec3 wi = more ? frame.toWorld(bs.wi) : Vec3{};
     if (more && dot(wi, ng) <= 0) more = false;
     if (more) {
