@@ -82,10 +82,9 @@ uint32_t ChainTrees::build(uint32_t first, uint32_t last) {
     return index;
 }
 
-ChainTrees::Nearest ChainTrees::nearest(uint32_t chain, const Vec3& p, double maxDistance2,
-                                        int32_t hint) const {
+ChainTrees::Nearest ChainTrees::nearest(uint32_t chain, const Vec3& p, double maxDistance2) const {
     if (!hierarchical_) return nearestByScan(chain, p, maxDistance2);
-    return search(chain, p, maxDistance2, hint);
+    return search(chain, p, maxDistance2);
 }
 
 ChainTrees::BoxQuery ChainTrees::boxQuery(const Vec3& lo, const Vec3& hi,
@@ -168,14 +167,9 @@ void ChainTrees::candidates(uint32_t chain, const Vec3& lo, const Vec3& hi,
     }
 }
 
-ChainTrees::Nearest ChainTrees::search(uint32_t chain, const Vec3& p, double maxDistance2,
-                                       int32_t hint) const {
+ChainTrees::Nearest ChainTrees::search(uint32_t chain, const Vec3& p, double maxDistance2) const {
     if (chainFirst_[chain] == chainEnd_[chain]) return {};
     Nearest best{kNone, maxDistance2};
-    if (hint != kNone) {
-        const double d2 = project(segments_[static_cast<uint32_t>(hint)], p).distance2;
-        if (d2 <= maxDistance2) best = {hint, d2};
-    }
     double bestDistance = std::sqrt(best.distance2);
     // A node can hold a segment within the best distance only if its axis is within that plus
     // its radius (relative margin: the rounding of the square and the square root).

@@ -35,9 +35,7 @@ public:
         double distance2 = 0;     ///< squared distance, as project() computes it
     };
     /// The segment of `chain` nearest to p whose squared distance is <= maxDistance2.
-    /// `hint`: a segment of the chain likely to be near (a neighbouring point's answer), which
-    /// lets the search prune from the start; kNone if there is none.
-    Nearest nearest(uint32_t chain, const Vec3& p, double maxDistance2, int32_t hint = kNone) const;
+    Nearest nearest(uint32_t chain, const Vec3& p, double maxDistance2) const;
     /// Appends, in id order, a superset of the segments of `chain` that are the nearest of
     /// the chain (as nearest() picks it) for some point of the box [lo, hi]. `nearestToCentre`:
     /// the chain's nearest segment to the box's centre. Typically the few segments the box
@@ -74,7 +72,7 @@ private:
     BoxQuery boxQuery(const Vec3& lo, const Vec3& hi, uint32_t nearestToCentre) const;
     /// False if no point of the box can have this segment as the nearest of its chain.
     bool mayBeNearest(uint32_t segment, const BoxQuery& box) const;
-    Nearest search(uint32_t chain, const Vec3& p, double maxDistance2, int32_t hint) const;
+    Nearest search(uint32_t chain, const Vec3& p, double maxDistance2) const;
 
     std::span<const FieldSegment> segments_;
     bool hierarchical_ = true;

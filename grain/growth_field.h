@@ -86,6 +86,9 @@ class GrowthField {
 public:
     /// The index (and its skeleton) must outlive the field.
     GrowthField(const SkeletonIndex& index, const GrainParams& params);
+    /// Not copyable: the chain hierarchies point into the field's own segments.
+    GrowthField(const GrowthField&) = delete;
+    GrowthField& operator=(const GrowthField&) = delete;
 
     const GrainParams& params() const { return params_; }
     const Skeleton& skeleton() const { return index_->skeleton(); }

@@ -40,8 +40,7 @@ Vec3 pointNearBranch(const Skeleton& sk, SplitMix& rng, uint32_t& chain, double 
 }
 
 TEST(ChainTrees, NearestIsThePlainLoopsAnswer) {
-    // Same segment, same distance bits, with or without a limit or a hint: the bar is 0
-    // mismatches.
+    // Same segment, same distance bits, with or without a limit: the bar is 0 mismatches.
     size_t queries = 0, found = 0;
     for (const Skeleton& sk : testTrees()) {
         const std::vector<FieldSegment> segments = flattenSegments(sk);
@@ -52,12 +51,7 @@ TEST(ChainTrees, NearestIsThePlainLoopsAnswer) {
             const Vec3 p = pointNearBranch(sk, rng, chain, 0.4);
             const double limit2 = q % 3 == 0 ? kInf : rng.uniform(0, 0.1);
             const ChainTrees::Nearest reference = trees.nearestByScan(chain, p, limit2);
-            const int32_t hint =
-                q % 2 ? kNone
-                      : static_cast<int32_t>(
-                            sk.chain(chain).firstSegment +
-                            static_cast<uint32_t>(rng.uniform() * sk.chain(chain).segmentCount));
-            const ChainTrees::Nearest n = trees.nearest(chain, p, limit2, hint);
+            const ChainTrees::Nearest n = trees.nearest(chain, p, limit2);
             ASSERT_EQ(n.segment, reference.segment) << "query " << q;
             ASSERT_EQ(n.distance2, reference.distance2) << "query " << q;
             found += n.segment != kNone;
