@@ -16,6 +16,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Points per chunk: the unit of candidate pruning inside a batch (an 8 x 8 tile).
 constexpr size_t kChunk = 64;
+/// Up to this many kept segments of a chain, a point measures them in double one by one: the
+/// vectorised float pass only pays beyond.
+constexpr uint32_t kDirectScan = 12;
 
 /// A lower bound of dieback(t, deathTime, eps) without pow(): (t / Tlim)^eps >= (t / Tlim)^n
 /// for n = floor(eps) since t / Tlim >= 1 there.
@@ -492,12 +495,24 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
                      std::max(std::max(tc.lower.y - pt.y, pt.y - tc.upper.y), 0.0),
                      std::max(std::max(tc.lower.z - pt.z, pt.z - tc.upper.z), 0.0)};
             if (dot(out, out) > radius2) continue;
+            // The nearest kept segment: a few (the usual case) measured in double directly, more
+            // in one vectorised float pass with near-ties settled in double. Both give the
+            // smallest double distance, ties to the first (smaller id).
             auto& kept = scratch.keptSegments;
-            const SegmentBatch::Measured measured = kept.measureFrom(pt, tc.begin, tc.end);
-            uint32_t nearest = kept.id(kept.nearest(tc.begin, tc.end, measured, [&](uint32_t k) {
-                return project(segments_[kept.id(k)], pt).distance2;
-            }));
-            Best best{static_cast<int32_t>(nearest), project(segments_[nearest], pt).distance2};
+            Best best;
+            if (tc.end - tc.begin <= kDirectScan) {
+                for (uint32_t k = tc.begin; k < tc.end; ++k) {
+                    const double d2 = project(segments_[kept.id(k)], pt).distance2;
+                    if (d2 < best.distance2) best = {static_cast<int32_t>(kept.id(k)), d2};
+                }
+            } else {
+                const SegmentBatch::Measured measured = kept.measureFrom(pt, tc.begin, tc.end);
+                const uint32_t nearest =
+                    kept.id(kept.nearest(tc.begin, tc.end, measured, [&](uint32_t k) {
+                        return project(segments_[kept.id(k)], pt).distance2;
+                    }));
+                best = {static_cast<int32_t>(nearest), project(segments_[nearest], pt).distance2};
+            }
             if (best.distance2 > radius2) continue;
             // The path through the nearest segment cannot come in under reach x T1: skip it
             // before paying for the full path time.
