@@ -79,11 +79,11 @@ void run(const RenderCliOptions& o) {
     const std::string samples =
         s.noiseThreshold > 0
             ? fmt::format(
-                  "adaptive sampling (noise threshold {}): {:.1f} spp on average, {} at most",
+                  ", adaptive sampling (noise threshold {}): {:.1f} spp on average, {} at most,",
                   s.noiseThreshold, double(stats.cameraRays) / (double(s.width) * s.height), s.spp)
-            : fmt::format("{} spp", s.spp);
-    fmt::print("{}x{} at {} in {:.2f} s: {:.2f} M rays/s ({:.2f} M camera rays/s)\n", s.width,
-               s.height, samples, stats.seconds, stats.rays / stats.seconds * 1e-6,
+            : fmt::format(" at {} spp", s.spp);
+    fmt::print("{}x{}{} in {:.2f} s: {:.2f} M rays/s ({:.2f} M camera rays/s)\n", s.width, s.height,
+               samples, stats.seconds, stats.rays / stats.seconds * 1e-6,
                stats.cameraRays / stats.seconds * 1e-6);
 }
 
