@@ -123,9 +123,9 @@ struct TileAovs {
     std::vector<int32_t> lamella;
     explicit TileAovs(size_t n, bool adaptive)
         : rgb(n),
+          albedo(n),
           rgbHalf(adaptive ? n : 0),
           halfCount(adaptive ? n : 0),
-          albedo(n),
           normal(n),
           hits(n),
           depth(n),
