@@ -99,11 +99,12 @@ void addRenderCommand(CLI::App& app) {
                     "Samples per pixel (overrides the scene); with --noise-threshold, the most a "
                     "pixel takes")
         ->check(CLI::Range(1, 1 << 16));
-    cmd->add_option("--noise-threshold", o->noiseThreshold,
-                    "Adaptive sampling: a pixel stops when the standard error of its mean over "
-                    "the square root of its mean (summed over R,G,B) is at most this, for it and "
-                    "its neighbours (e.g. 0.01; 0 = off, every pixel takes --spp; overrides the "
-                    "scene)")
+    cmd->add_option(
+           "--noise-threshold", o->noiseThreshold,
+           "Adaptive sampling: a pixel stops when the estimated standard error of its mean over "
+           "the square root of its mean (summed over R,G,B) is at most this, for it and "
+           "its neighbours (e.g. 0.01; 0 = off, every pixel takes --spp; overrides the "
+           "scene)")
         ->check(CLI::Range(0.0, 1.0));
     cmd->add_option("--min-spp", o->minSpp,
                     "Adaptive sampling: samples every pixel takes before its noise is estimated "

@@ -241,9 +241,10 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
     }
 
     // Adaptive sampling: rounds. Every pixel first takes minSpp samples; then each pixel whose
-    // own or a neighbour's noise estimate is above the threshold doubles its samples, up to
-    // spp. Decisions use this tile's pixels only (tiles are fixed, whatever the thread count),
-    // and a pixel's k-th sample is the same wherever it is taken: the image is deterministic.
+    // pooled noise estimate, or a neighbour's, is above the threshold doubles its samples, up
+    // to spp (planNextRound). Decisions use this tile's pixels only (tiles are fixed, whatever the
+    // thread count), and a pixel's k-th sample is the same wherever it is taken: the image is
+    // deterministic.
     const bool adaptive = settings.noiseThreshold > 0;
     const uint32_t firstRound =
         adaptive ? std::min(spp, settings.minSpp > 0 ? static_cast<uint32_t>(settings.minSpp)

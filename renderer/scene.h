@@ -33,9 +33,9 @@ struct RenderSettings {
     int spp = 16;      ///< samples per pixel; with adaptive sampling, the most a pixel takes
     int maxDepth = 6;  ///< path vertices after the camera
     uint64_t seed = 1;
-    /// Adaptive sampling (0 = off: every pixel takes spp samples). A pixel stops once the
-    /// standard error of its mean, over the square root of its mean (both summed over R, G,
-    /// B), is at most this, in its own and its 8 neighbours' estimates (path_tracer.h).
+    /// Adaptive sampling (0 = off: every pixel takes spp samples). A pixel stops once its
+    /// estimated standard error over the square root of its level (summed over R, G, B; pooled
+    /// over its 3 x 3 neighbourhood) is at most this (docs/render.md#adaptive-sampling).
     double noiseThreshold = 0;
     int minSpp = 0;  ///< samples every pixel takes before the first estimate; 0 = min(spp, 16)
 };
