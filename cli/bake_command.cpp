@@ -12,6 +12,7 @@
 #include "renderer/bake/grid_bake.h"
 #include "renderer/bake/grid_writers.h"
 #include "renderer/colour_management.h"
+#include "renderer/farm/split_job.h"
 #include "skeleton/skeleton_file.h"
 #include "skeleton/skeleton_index.h"
 #include "util/input_error.h"
@@ -33,6 +34,7 @@ struct CommonOptions {
     int threads = 0;
     bool quiet = false;
     std::string fellingTime;  ///< years, or "auto"; empty: the grain file's
+    std::string tile;         ///< "K/N": bake only part K of N (a split job)
 };
 
 void addCommon(CLI::App* cmd, CommonOptions& o) {
@@ -49,6 +51,30 @@ void addCommon(CLI::App* cmd, CommonOptions& o) {
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
     cmd->add_flag("-q,--quiet", o.quiet, "No progress bar");
+    cmd->add_option("--tile", o.tile,
+                    "K/N: bake only part K of N (a band of whole bake tiles) into an EXR part "
+                    "file, for a cluster; `nenrin merge` puts the parts together, byte-identical "
+                    "to one bake (docs/farm.md)");
+}
+
+/// A split job's part: the grid keeps only its band of layers and is labelled with the job's
+/// fingerprint. Parts are always EXR, and have no preview.
+void makePart(BakedGrid& grid, const CommonOptions& o, JobKind kind, const std::string& png) {
+    if (o.tile.empty()) return;
+    const PartNumber number = parsePartNumber(o.tile, "command line", "--tile");
+    if (lowerExtension(o.output) != ".exr")
+        throw InputError(o.output, "", "a part of a split bake (--tile) is written as .exr");
+    if (!png.empty())
+        throw InputError("command line", "--png",
+                         "a part of a split bake has no preview: give --png to nenrin merge");
+    const RowBand band =
+        bandOfPart(grid.layerCount(), bakeTileLayers(grid.isVolume()), number.part, number.parts);
+    grid.layerBegin = band.begin;
+    grid.layerEnd = band.end;
+    std::vector<std::string> inputs{o.skeleton};
+    if (!o.grain.empty()) inputs.push_back(o.grain);
+    const std::string fingerprint = jobFingerprint(kind, grid.metadata, "", inputs);
+    labelPart(grid.metadata, kind, fingerprint, number);
 }
 
 /// Everything a bake needs, loaded and validated before any output is touched.
@@ -184,17 +210,11 @@ void addBakeCommands(CLI::App& app) {
         grid.metadata["slice"] =
             fmt::format("plane={} at={} size={}x{}m bottom={}", slicePlaneName(spec.plane), spec.at,
                         spec.width, spec.height, spec.bottom);
+        makePart(grid, sliceCommon, JobKind::BakeSlice, slicePng);
         bakeGrid(*wood->shader, grid, {sliceCommon.threads, sliceCommon.quiet, "Baking slice"});
         auto files = writeExr(grid, sliceCommon.output);
         if (!slicePng.empty()) {
-            // Colour over coverage: outside the felled log (A = 0) stays black.
-            std::vector<float> rgb;
-            rgb.reserve(grid.sampleCount() * 3);
-            for (size_t i = 0; i < grid.sampleCount(); ++i)
-                for (int c = 0; c < 3; ++c)
-                    rgb.push_back(grid.data[i * BakedGrid::kChannels + c] *
-                                  grid.data[i * BakedGrid::kChannels + 3]);
-            writePreviewPng(slicePng, rgb, grid.width, grid.height);
+            writeSlicePreviewPng(grid, slicePng);
             files.push_back(slicePng);
         }
         report(grid, files, since(t0));
@@ -235,6 +255,7 @@ void addBakeCommands(CLI::App& app) {
         BakedGrid grid = volumeGrid(spec);
         addMetadata(grid, volumeCommon, *wood);
         grid.metadata["box"] = box;
+        makePart(grid, volumeCommon, JobKind::BakeVolume, "");
         bakeGrid(*wood->shader, grid, {volumeCommon.threads, volumeCommon.quiet, "Baking volume"});
         auto files = writeVolume(grid, volumeCommon.output);
         report(grid, files, since(t0));

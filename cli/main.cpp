@@ -8,9 +8,11 @@
 #include <exception>
 
 #include "bake_command.h"
+#include "farm_command.h"
 #include "grain_command.h"
 #include "pov_command.h"
 #include "render_command.h"
+#include "split_commands.h"
 #include "tree_command.h"
 #include "tree_model_commands.h"
 #include "util/input_error.h"
@@ -23,6 +25,9 @@ int main(int argc, char** argv) {
     nenrin::addBakeCommands(app);
     nenrin::addGrainCommands(app);
     nenrin::addRenderCommand(app);
+    nenrin::addMergeCommand(app);
+    nenrin::addBatchCommand(app);
+    nenrin::addFarmCommand(app);
     nenrin::addPovCommands(app);
     nenrin::addTreeCommands(app);
     nenrin::addStandCommands(app);

@@ -18,6 +18,7 @@ set(sources_of_library
     "renderer/bake:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/pov:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/preview:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
+    "renderer/farm:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "cli:*")
 
 set(libraries "")

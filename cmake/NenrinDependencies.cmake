@@ -12,6 +12,7 @@ find_package(tinyobjloader CONFIG REQUIRED)
 # Quirk: OpenColorIO's CMake config computes an empty prefix on Debian; pkg-config works.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)
+pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)
 
 # Quirk: Debian's OpenImageIO target lists /usr/include/opencv4, which does not exist.
 foreach(prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)

@@ -6,12 +6,34 @@
 #include <string>
 #include <vector>
 
+#include "renderer/row_band.h"
+
 namespace nenrin {
 
 /// Writes `pixels` (channel-interleaved, row 0 at the top) to `writePath`; errors name
 /// `finalPath` (the name the caller will rename it to). A channel named "A" is the alpha.
+/// With a band, `pixels` hold only its rows, written as the EXR data window of a width x
+/// height frame (the display window): how the parts of a split job are stored.
 void writeFloatExr(const std::string& finalPath, const std::string& writePath, int width,
                    int height, const std::vector<std::string>& channels, const float* pixels,
-                   const std::map<std::string, std::string>& metadata);
+                   const std::map<std::string, std::string>& metadata, RowBand band = {});
+
+/// An EXR read back whole: its data window, channels, pixels and nenrin:KEY metadata.
+struct FloatExr {
+    int width = 0, height = 0;  ///< the display window (the frame); its origin must be 0, 0
+    RowBand band;               ///< the data window's rows (its columns must span the frame)
+    std::vector<std::string> channels;
+    std::vector<float> pixels;                    ///< channel-interleaved, the band's rows only
+    std::map<std::string, std::string> metadata;  ///< nenrin:KEY attributes, without "nenrin:"
+};
+
+/// Reads an EXR written by writeFloatExr; throws InputError naming `path` if it cannot be read
+/// or is not such a file (a tiled or deep file, a window that is not a band of rows).
+FloatExr readFloatExr(const std::string& path);
+
+/// Puts the channels of `exr` in `order` (OpenEXR stores them sorted by name, and readers
+/// may list them in another order than they were written); throws InputError naming `path`
+/// unless the file has exactly these channels.
+void orderChannels(FloatExr& exr, const std::vector<std::string>& order, const std::string& path);
 
 }  // namespace nenrin

@@ -6,10 +6,12 @@
 
 namespace nenrin {
 
-void Film::resize(int w, int h) {
+void Film::resize(int w, int h, int first, int count) {
     width = w;
     height = h;
-    size_t n = size_t(w) * h;
+    firstRow = first;
+    rows = count < 0 ? h - first : count;
+    size_t n = size_t(w) * rows;
     rgb.assign(3 * n, 0);
     albedo.assign(3 * n, 0);
     normal.assign(3 * n, 0);
@@ -20,13 +22,18 @@ void Film::resize(int w, int h) {
     lamella.assign(n, -1);
 }
 
-void writeFilmExr(const Film& film, const std::string& path,
-                  const std::map<std::string, std::string>& metadata) {
+std::vector<std::string> filmChannelNames(bool adaptive) {
     std::vector<std::string> names = {"R",   "G",   "B",   "A", "albedo.R", "albedo.G", "albedo.B",
                                       "N.X", "N.Y", "N.Z", "Z", "T",        "knot",     "lamella"};
-    if (!film.samples.empty()) names.push_back("samples");
+    if (adaptive) names.push_back("samples");
+    return names;
+}
+
+void writeFilmExr(const Film& film, const std::string& path,
+                  const std::map<std::string, std::string>& metadata) {
+    const std::vector<std::string> names = filmChannelNames(!film.samples.empty());
     const int channels = static_cast<int>(names.size());
-    const size_t n = size_t(film.width) * film.height;
+    const size_t n = size_t(film.width) * film.rows;
     std::vector<float> pixels(n * channels);
     for (size_t i = 0; i < n; ++i) {
         float* p = &pixels[i * channels];
@@ -44,7 +51,7 @@ void writeFilmExr(const Film& film, const std::string& path,
     }
     AtomicOutput out(path);
     writeFloatExr(path, out.temporaryPath(), film.width, film.height, names, pixels.data(),
-                  metadata);
+                  metadata, {film.firstRow, film.firstRow + film.rows});
     out.commit();
 }
 

@@ -19,16 +19,23 @@
 namespace nenrin {
 
 struct Film {
-    int width = 0, height = 0;
-    std::vector<float> rgb, albedo, normal;  ///< 3 per pixel, row 0 at the top
+    int width = 0, height = 0;  ///< the whole frame
+    /// The rows the film holds: all of them, unless a split job (--tile) renders a band.
+    int firstRow = 0, rows = 0;
+    std::vector<float> rgb, albedo, normal;  ///< 3 per pixel, row firstRow first
     std::vector<float> alpha, depth, growthTime, knot, lamella;
     std::vector<float> samples;  ///< per pixel; empty unless sampling was adaptive
 
-    void resize(int w, int h);
+    /// A frame of w x h holding rows [first, first + count) (count < 0: to the bottom).
+    void resize(int w, int h, int first = 0, int count = -1);
+    bool whole() const { return firstRow == 0 && rows == height; }
 };
 
+/// The EXR channel names of a film, in file order ("samples" only if sampling was adaptive).
+std::vector<std::string> filmChannelNames(bool adaptive);
+
 /// Writes all channels as 32-bit float EXR (zip), atomically; `metadata` goes into the header
-/// as nenrin:KEY strings.
+/// as nenrin:KEY strings. A band of rows is written as that EXR data window of the frame.
 void writeFilmExr(const Film& film, const std::string& path,
                   const std::map<std::string, std::string>& metadata);
 

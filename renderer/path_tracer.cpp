@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <utility>
 
 #include "renderer/camera.h"
@@ -23,7 +24,7 @@ namespace nenrin {
 
 namespace {
 
-constexpr int kTileSize = 16;
+constexpr int kTileSize = kRenderTileSize;
 /// A pixel whose shared wood evaluation is on a knot's edge (knot share between this and
 /// 1 - this) is shaded per sample.
 constexpr double kKnotRefinement = 0.02;
@@ -329,7 +330,7 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
     for (int j = 0; j < th; ++j) {
         for (int i = 0; i < tw; ++i) {
             size_t p = size_t(j) * tw + i;
-            size_t f = size_t(y0 + j) * film.width + (x0 + i);
+            size_t f = size_t(y0 + j - film.firstRow) * film.width + (x0 + i);
             const double inv = 1.0 / done[p];
             Rgb c = aovs.rgb[p] * inv;
             film.rgb[3 * f] = float(c.r);
@@ -890,12 +891,18 @@ Film renderScene(const Scene& scene, const RenderOptions& options, RenderStats& 
     auto start = std::chrono::steady_clock::now();
     RayScene rays(scene);
     Camera camera(scene.camera, settings.width, settings.height);
+    const int rowEnd = options.rows.end < 0 ? settings.height : options.rows.end;
+    if (options.rows.begin % kTileSize != 0 || options.rows.begin < 0 ||
+        rowEnd <= options.rows.begin || rowEnd > settings.height ||
+        (rowEnd % kTileSize != 0 && rowEnd != settings.height))
+        throw std::invalid_argument("renderScene: rows not a band of whole tile rows");
     Film film;
-    film.resize(settings.width, settings.height);
+    film.resize(settings.width, settings.height, options.rows.begin, rowEnd - options.rows.begin);
     if (settings.noiseThreshold > 0) film.samples.assign(film.alpha.size(), 0);
 
     const int tilesX = (settings.width + kTileSize - 1) / kTileSize;
-    const int tilesY = (settings.height + kTileSize - 1) / kTileSize;
+    const int firstTileRow = options.rows.begin / kTileSize;
+    const int tilesY = (rowEnd + kTileSize - 1) / kTileSize - firstTileRow;
     const size_t tileCount = size_t(tilesX) * tilesY;
     std::vector<RenderStats> tileStats(tileCount);
     ProgressReporter progress(static_cast<long long>(tileCount), "Rendering", options.quiet);
@@ -903,7 +910,8 @@ Film renderScene(const Scene& scene, const RenderOptions& options, RenderStats& 
     tbb::enumerable_thread_specific<TileRenderer> renderers(
         [&] { return TileRenderer(scene, rays, camera); });
     parallelTiles(tileCount, options.threads, [&](size_t tile) {
-        int tx = static_cast<int>(tile % tilesX), ty = static_cast<int>(tile / tilesX);
+        int tx = static_cast<int>(tile % tilesX),
+            ty = firstTileRow + static_cast<int>(tile / tilesX);
         int x0 = tx * kTileSize, y0 = ty * kTileSize;
         int x1 = std::min(settings.width, x0 + kTileSize);
         int y1 = std::min(settings.height, y0 + kTileSize);

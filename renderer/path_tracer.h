@@ -15,13 +15,20 @@
 #include <cstdint>
 
 #include "renderer/film.h"
+#include "renderer/row_band.h"
 #include "renderer/scene.h"
 
 namespace nenrin {
 
+/// Pixels per side of the tiles the frame is rendered in (and adaptive sampling decides in):
+/// the bands of a split render start on multiples of it.
+inline constexpr int kRenderTileSize = 16;
+
 struct RenderOptions {
     int threads = 0;  ///< 0 = all cores
     bool quiet = false;
+    /// Only these rows (a split job's part); begin must be a multiple of kRenderTileSize.
+    RowBand rows;
 };
 
 struct RenderStats {
@@ -30,7 +37,7 @@ struct RenderStats {
     uint64_t rays = 0;  ///< all rays traced: camera, bounce and shadow rays
 };
 
-/// Renders with scene.settings (resolution, spp, depth, seed).
+/// Renders with scene.settings (resolution, spp, depth, seed); the film holds options.rows.
 Film renderScene(const Scene& scene, const RenderOptions& options, RenderStats& stats);
 
 }  // namespace nenrin

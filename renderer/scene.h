@@ -94,6 +94,11 @@ struct SceneObject {
 
 struct Scene {
     std::string file;
+    /// The scene JSON as loaded (after overrides), compact: with inputFiles, what a split
+    /// job's fingerprint is made of.
+    std::string source;
+    /// Every file the scene refers to (skeletons, grain files, meshes, textures, maps).
+    std::vector<std::string> inputFiles;
     CameraSpec camera;
     RenderSettings settings;
     std::vector<Light> lights;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -24,10 +25,14 @@ constexpr long long kMaxPixels = 1LL << 26;
 constexpr int kMaxSpp = 1 << 16;
 constexpr int kMaxLamellae = 100000;
 
-std::string resolve(const std::string& sceneFile, const std::string& relative) {
+/// A path in the scene file, relative to it; recorded as one of the scene's inputs.
+std::string resolve(Scene& scene, const std::string& relative) {
     fs::path p(relative);
-    if (p.is_absolute()) return relative;
-    return (fs::path(sceneFile).parent_path() / p).lexically_normal().string();
+    std::string path = p.is_absolute()
+                           ? relative
+                           : (fs::path(scene.file).parent_path() / p).lexically_normal().string();
+    scene.inputFiles.push_back(path);
+    return path;
 }
 
 /// A colour: [r, g, b] or one number for grey, each >= 0.
@@ -97,7 +102,7 @@ RenderSettings readSettings(JsonReader& r) {
     return s;
 }
 
-Light readLight(JsonReader& r, const std::string& sceneFile) {
+Light readLight(JsonReader& r, Scene& scene) {
     Light l;
     std::string type = r.choice("type", "", {"distant", "sun", "point", "rect", "environment"});
     Rgb colour = colourOf(r, "colour", {1, 1, 1});
@@ -126,7 +131,7 @@ Light readLight(JsonReader& r, const std::string& sceneFile) {
         l.type = LightType::Environment;
         double intensity = r.nonNegative("intensity", 1);
         if (r.has("map")) {
-            std::string map = resolve(sceneFile, r.string("map", ""));
+            std::string map = resolve(scene, r.string("map", ""));
             l.environment = std::make_shared<EnvironmentMap>(
                 EnvironmentMap::load(map, intensity, radians(r.number("rotation", 0))));
             if (r.has("colour")) throw r.error("colour", "use either \"map\" or \"colour\"");
@@ -164,13 +169,13 @@ Material readMaterial(JsonReader& r, Scene& scene) {
         m.type = MaterialType::Textured;
         if (!r.has("base_colour")) throw r.error("base_colour", "missing: the base colour map");
         m.baseColourMap = std::make_shared<ImageTexture>(
-            ImageTexture::load(resolve(scene.file, r.string("base_colour", "")), 3));
+            ImageTexture::load(resolve(scene, r.string("base_colour", "")), 3));
         if (r.has("normal"))
             m.normalMap = std::make_shared<ImageTexture>(
-                ImageTexture::load(resolve(scene.file, r.string("normal", "")), 3));
+                ImageTexture::load(resolve(scene, r.string("normal", "")), 3));
         if (r.has("fibre"))
             m.fibreMap = std::make_shared<ImageTexture>(
-                ImageTexture::load(resolve(scene.file, r.string("fibre", "")), 3));
+                ImageTexture::load(resolve(scene, r.string("fibre", "")), 3));
         std::string preset = r.string("finish", "oiled");
         if (!finishPreset(preset, m.finish))
             throw r.error("finish", fmt::format("expected one of {}, found \"{}\"",
@@ -178,8 +183,8 @@ Material readMaterial(JsonReader& r, Scene& scene) {
     } else if (type == "wood") {
         m.type = MaterialType::Wood;
         if (!r.has("skeleton")) throw r.error("skeleton", "missing: the skeleton JSON file");
-        std::string skeleton = resolve(scene.file, r.string("skeleton", ""));
-        std::string grain = r.has("grain") ? resolve(scene.file, r.string("grain", "")) : "";
+        std::string skeleton = resolve(scene, r.string("skeleton", ""));
+        std::string grain = r.has("grain") ? resolve(scene, r.string("grain", "")) : "";
         Finish finish;
         std::string preset = r.string("finish", "oiled");
         if (!finishPreset(preset, finish))
@@ -290,8 +295,8 @@ SceneObject readObject(JsonReader& r, Scene& scene,
         } else {
             o.shape = ShapeType::Mesh;
             if (!r.has("file")) throw r.error("file", "missing: the OBJ file");
-            auto mesh = std::make_shared<TriangleMesh>(
-                loadObjMesh(resolve(scene.file, r.string("file", ""))));
+            auto mesh =
+                std::make_shared<TriangleMesh>(loadObjMesh(resolve(scene, r.string("file", ""))));
             double scale = r.positive("scale", 1);
             for (Vec3& p : mesh->positions) p = p * scale;
             o.mesh = mesh;
@@ -391,12 +396,45 @@ SceneObject readObject(JsonReader& r, Scene& scene,
     return o;
 }
 
+void applyOverrides(nlohmann::json& json, const SceneOverrides& overrides,
+                    const std::string& path) {
+    for (const auto& [pointerText, value] : overrides.values) {
+        nlohmann::json::json_pointer pointer;
+        try {
+            pointer = nlohmann::json::json_pointer(pointerText);
+        } catch (const nlohmann::json::exception&) {
+            throw InputError(overrides.origin, pointerText,
+                             "expected a JSON pointer such as /render/seed");
+        }
+        if (pointer.empty() || !json.contains(pointer.parent_pointer()))
+            throw InputError(overrides.origin, pointerText,
+                             fmt::format("no such place in {}: its parent does not exist", path));
+        const nlohmann::json& parent = json.at(pointer.parent_pointer());
+        if (parent.is_array()) {
+            const std::string& last = pointer.back();
+            size_t index = 0;
+            auto [end, ec] = std::from_chars(last.data(), last.data() + last.size(), index);
+            if (ec != std::errc() || end != last.data() + last.size() || index >= parent.size())
+                throw InputError(overrides.origin, pointerText,
+                                 fmt::format("no such place in {}: index {} of an array of {}",
+                                             path, last, parent.size()));
+        } else if (!parent.is_object()) {
+            throw InputError(
+                overrides.origin, pointerText,
+                fmt::format("no such place in {}: its parent is {}", path, jsonTypeName(parent)));
+        }
+        json[pointer] = value;
+    }
+}
+
 }  // namespace
 
-std::unique_ptr<Scene> loadScene(const std::string& path) {
+std::unique_ptr<Scene> loadScene(const std::string& path, const SceneOverrides& overrides) {
     auto scene = std::make_unique<Scene>();
     scene->file = path;
     nlohmann::json json = parseJsonFile(path);
+    applyOverrides(json, overrides, path);
+    scene->source = json.dump();
     JsonReader root(json, path);
     root.string("description", "");
     if (auto c = root.object("camera"))
@@ -405,7 +443,7 @@ std::unique_ptr<Scene> loadScene(const std::string& path) {
         throw root.error("camera", "missing: {position, look_at, fov}");
     if (auto s = root.object("render")) scene->settings = readSettings(*s);
 
-    for (JsonReader& l : root.objectList("lights")) scene->lights.push_back(readLight(l, path));
+    for (JsonReader& l : root.objectList("lights")) scene->lights.push_back(readLight(l, *scene));
     int environments = 0;
     for (const Light& l : scene->lights) environments += l.type == LightType::Environment;
     if (environments > 1) throw root.error("lights", "at most one environment light");

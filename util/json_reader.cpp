@@ -249,6 +249,11 @@ std::optional<JsonReader> JsonReader::object(const std::string& key) {
     return JsonReader(at(key), file_, pathOf(key));
 }
 
+const nlohmann::json* JsonReader::raw(const std::string& key) {
+    if (!has(key)) return nullptr;
+    return &at(key);
+}
+
 std::vector<JsonReader> JsonReader::objectList(const std::string& key) {
     std::vector<JsonReader> out;
     if (!has(key)) return out;

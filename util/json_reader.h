@@ -61,6 +61,9 @@ public:
     std::vector<Vec3> requireVec3List(const std::string& key);
     std::vector<double> numberList(const std::string& key);
 
+    /// Any JSON value under `key`, marked as read (nullptr if absent): for values nenrin
+    /// passes on rather than reads (scene overrides).
+    const nlohmann::json* raw(const std::string& key);
     /// The object under `key`, or nullopt if absent. Call finish() on it as well.
     std::optional<JsonReader> object(const std::string& key);
     /// The array of objects under `key` (empty if absent).

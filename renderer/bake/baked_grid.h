@@ -20,14 +20,24 @@ struct BakedGrid {
     /// Tree-space position of sample (i, j, k) = origin + i*stepX + j*stepY + k*stepZ.
     Vec3 origin, stepX, stepY, stepZ;
     std::map<std::string, std::string> metadata;
+    /// The layers held: all of them, unless a split job (--tile) bakes a band. A layer is a
+    /// row of a 2D grid or a z slice of a volume; data holds layers [layerBegin, layerEnd).
+    int layerBegin = 0, layerEnd = -1;
 
     static constexpr int kChannels = static_cast<int>(kBakeChannels.size());
-    size_t sampleCount() const { return size_t(width) * height * depth; }
-    float* at(int i, int j, int k = 0) {
-        return &data[((size_t(k) * height + j) * width + i) * kChannels];
-    }
-    const float* at(int i, int j, int k = 0) const {
-        return &data[((size_t(k) * height + j) * width + i) * kChannels];
+    bool isVolume() const { return depth > 1; }
+    int layerCount() const { return isVolume() ? depth : height; }
+    int storedEnd() const { return layerEnd < 0 ? layerCount() : layerEnd; }
+    size_t layerSize() const { return isVolume() ? size_t(width) * height : size_t(width); }
+    bool whole() const { return layerBegin == 0 && storedEnd() == layerCount(); }
+    /// Samples held (all of the grid's unless it is a band).
+    size_t sampleCount() const { return layerSize() * (storedEnd() - layerBegin); }
+    float* at(int i, int j, int k = 0) { return &data[index(i, j, k) * kChannels]; }
+    const float* at(int i, int j, int k = 0) const { return &data[index(i, j, k) * kChannels]; }
+
+private:
+    size_t index(int i, int j, int k) const {
+        return (size_t(k) * height + j) * width + i - size_t(layerBegin) * layerSize();
     }
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <stdexcept>
 
 #include "renderer/parallel_tiles.h"
 #include "util/progress.h"
@@ -16,16 +17,23 @@ constexpr int kTile2D = 32, kChunk2D = 8;
 constexpr int kTile3D = 8, kChunk3D = 4;
 }  // namespace
 
+int bakeTileLayers(bool volume) { return volume ? kTile3D : kTile2D; }
+
 void bakeGrid(const WoodShader& shader, BakedGrid& grid, const BakeOptions& options) {
     grid.data.assign(grid.sampleCount() * BakedGrid::kChannels, 0.f);
-    const bool volume = grid.depth > 1;
+    const bool volume = grid.isVolume();
+    if (grid.layerBegin % bakeTileLayers(volume) != 0)
+        throw std::invalid_argument("bakeGrid: band does not start on a tile");
     const int kTile = volume ? kTile3D : kTile2D;
     const int chunk = volume ? kChunk3D : kChunk2D;
     const int tz = volume ? kTile3D : 1;
     const int cz = volume ? kChunk3D : 1;
+    // Whole tiles of the held layers only: along y for a slice, along z for a volume.
+    const int firstTile = grid.layerBegin / kTile;
+    const int layerTiles = (grid.storedEnd() + kTile - 1) / kTile - firstTile;
     const int nx = (grid.width + kTile - 1) / kTile;
-    const int ny = (grid.height + kTile - 1) / kTile;
-    const int nz = (grid.depth + tz - 1) / tz;
+    const int ny = volume ? (grid.height + kTile - 1) / kTile : layerTiles;
+    const int nz = volume ? layerTiles : 1;
     const size_t tiles = size_t(nx) * ny * nz;
     ProgressReporter progress(static_cast<long long>(tiles), options.title, options.quiet);
 
@@ -36,11 +44,12 @@ void bakeGrid(const WoodShader& shader, BakedGrid& grid, const BakeOptions& opti
         thread_local std::vector<WoodSample> wood;
         thread_local std::vector<std::array<int, 3>> indices;
         const int ti = static_cast<int>(tile % nx);
-        const int tj = static_cast<int>((tile / nx) % ny);
-        const int tk = static_cast<int>(tile / (size_t(nx) * ny));
+        const int tj = static_cast<int>((tile / nx) % ny) + (volume ? 0 : firstTile);
+        const int tk = static_cast<int>(tile / (size_t(nx) * ny)) + (volume ? firstTile : 0);
         const int i0 = ti * kTile, i1 = std::min(grid.width, i0 + kTile);
-        const int j0 = tj * kTile, j1 = std::min(grid.height, j0 + kTile);
-        const int k0 = tk * tz, k1 = std::min(grid.depth, k0 + tz);
+        const int j0 = tj * kTile,
+                  j1 = std::min(volume ? grid.height : grid.storedEnd(), j0 + kTile);
+        const int k0 = tk * tz, k1 = std::min(volume ? grid.storedEnd() : 1, k0 + tz);
         points.clear();
         indices.clear();
         for (int ck = k0; ck < k1; ck += cz)

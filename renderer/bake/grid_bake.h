@@ -15,7 +15,12 @@ struct BakeOptions {
     std::string title = "Baking";
 };
 
-/// Fills grid.data (resizing it). Bitwise identical for any thread count.
+/// Layers per bake tile (rows of a slice, z slices of a volume): the bands of a split bake
+/// start on multiples of it, so every sample is computed in the same batch as in a whole bake.
+int bakeTileLayers(bool volume);
+
+/// Fills grid.data (resizing it) for the layers the grid holds (grid.layerBegin must be a
+/// multiple of bakeTileLayers). Bitwise identical for any thread count and split.
 void bakeGrid(const WoodShader& shader, BakedGrid& grid, const BakeOptions& options);
 
 }  // namespace nenrin

@@ -9,9 +9,12 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <stdexcept>
 
+#include "renderer/colour_management.h"
 #include "renderer/exr_file.h"
 #include "util/atomic_output.h"
+#include "util/content_hash.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -28,13 +31,50 @@ std::vector<std::string> writeExr(const BakedGrid& grid, const std::string& path
         metadata["volume_layout"] =
             "atlas: z slice k occupies rows k*Sy .. k*Sy+Sy-1, y index = row - k*Sy";
     }
+    // A band of layers is a band of the image's rows (a volume's z slices are stacked).
+    const int rowsPerLayer = grid.isVolume() ? grid.height : 1;
     writeFloatExr(path, out.temporaryPath(), grid.width, grid.height * grid.depth,
-                  {kBakeChannels.begin(), kBakeChannels.end()}, grid.data.data(), metadata);
+                  {kBakeChannels.begin(), kBakeChannels.end()}, grid.data.data(), metadata,
+                  {grid.layerBegin * rowsPerLayer, grid.storedEnd() * rowsPerLayer});
     out.commit();
     return {path};
 }
 
+namespace {
+
+/// OpenVDB stamps every file with a random UUID (readers use it to spot the same file twice),
+/// so the same bake would never give the same bytes. It is replaced by one made from the
+/// content: the same grid gives the same file, a different grid another UUID.
+void stampContentUuid(const BakedGrid& grid, const std::string& file, const std::string& path) {
+    // Header: magic (8 bytes), file version (4), library version (4 + 4), "has grid offsets"
+    // (1), then the UUID as 36 ASCII characters 8-4-4-4-12.
+    constexpr std::streamoff kUuidOffset = 21;
+    constexpr size_t kUuidSize = 36;
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    std::string uuid(kUuidSize, '\0');
+    f.seekg(kUuidOffset);
+    f.read(uuid.data(), kUuidSize);
+    const bool looksRight =
+        f && uuid[8] == '-' && uuid[13] == '-' && uuid[18] == '-' && uuid[23] == '-';
+    if (!looksRight)
+        throw InputError(path, "", "unexpected OpenVDB header: no UUID where expected");
+    ContentHash hash;
+    hash.add(std::string_view(reinterpret_cast<const char*>(grid.data.data()),
+                              grid.data.size() * sizeof(float)));
+    for (const auto& [key, value] : grid.metadata) hash.add(key + "=" + value);
+    const std::string h = hash.hex();
+    const std::string stamped = h.substr(0, 8) + "-" + h.substr(8, 4) + "-" + h.substr(12, 4) +
+                                "-" + h.substr(16, 4) + "-" + h.substr(20, 12);
+    f.seekp(kUuidOffset);
+    f.write(stamped.data(), kUuidSize);
+    f.close();
+    if (!f) throw InputError(path, "", "cannot write the VDB (disk full?)");
+}
+
+}  // namespace
+
 std::vector<std::string> writeVdb(const BakedGrid& grid, const std::string& path) {
+    if (!grid.whole()) throw std::invalid_argument("writeVdb: a band of a grid");
     openvdb::initialize();
     AtomicOutput out(path);
     openvdb::GridPtrVec grids;
@@ -65,11 +105,13 @@ std::vector<std::string> writeVdb(const BakedGrid& grid, const std::string& path
     } catch (const std::exception& e) {
         throw InputError(path, "", std::string("cannot write VDB: ") + e.what());
     }
+    stampContentUuid(grid, out.temporaryPath(), path);
     out.commit();
     return {path};
 }
 
 std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path) {
+    if (!grid.whole()) throw std::invalid_argument("writeDf3: a band of a grid");
     if (grid.width > 65535 || grid.height > 65535 || grid.depth > 65535)
         throw InputError(path, "", "df3 sizes are 16-bit: at most 65535 samples per axis");
     fs::path base = fs::path(path);
@@ -134,6 +176,16 @@ std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path
     }
     for (auto& o : outputs) o->commit();
     return written;
+}
+
+void writeSlicePreviewPng(const BakedGrid& grid, const std::string& path) {
+    std::vector<float> rgb;
+    rgb.reserve(grid.sampleCount() * 3);
+    for (size_t i = 0; i < grid.sampleCount(); ++i)
+        for (int c = 0; c < 3; ++c)
+            rgb.push_back(grid.data[i * BakedGrid::kChannels + c] *
+                          grid.data[i * BakedGrid::kChannels + 3]);
+    writePreviewPng(path, rgb, grid.width, grid.height);
 }
 
 std::vector<std::string> writeVolume(const BakedGrid& grid, const std::string& path) {

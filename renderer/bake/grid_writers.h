@@ -16,10 +16,16 @@
 
 namespace nenrin {
 
-/// Writes a 2D grid (depth 1) or a volume atlas as EXR. Returns the files written.
+/// Writes a 2D grid (depth 1) or a volume atlas as EXR; a band of a grid (a split job's part)
+/// as that band of the image's rows. Returns the files written. OpenVDB and df3 need the
+/// whole grid.
 std::vector<std::string> writeExr(const BakedGrid& grid, const std::string& path);
 std::vector<std::string> writeVdb(const BakedGrid& grid, const std::string& path);
 std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path);
+
+/// An 8-bit sRGB preview of a slice's colour over its coverage (black outside the felled log),
+/// through OpenColorIO.
+void writeSlicePreviewPng(const BakedGrid& grid, const std::string& path);
 
 /// Dispatches on the extension (.exr, .vdb, .df3); throws InputError for anything else.
 std::vector<std::string> writeVolume(const BakedGrid& grid, const std::string& path);
