@@ -1,6 +1,5 @@
 #include "grain_command.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <fmt/format.h>
 
 #include <cmath>
@@ -9,6 +8,7 @@
 
 #include "grain/colour_strip.h"
 #include "grain/grain_params.h"
+#include "renderer/image_file.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
 #include "util/json_reader.h"
@@ -24,10 +24,10 @@ struct StripOptions {
 /// The strip's colour per column (rows averaged), scene-linear: 8- and 16-bit images are read
 /// as sRGB, float images (EXR) as linear.
 std::vector<Rgb> readStrip(const std::string& path) {
-    OIIO::ImageBuf image(path);
-    if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT))
-        throw InputError(path, "", "cannot read the image: " + image.geterror());
-    const OIIO::ImageSpec& spec = image.spec();
+    const ImageFile image = readImageFile(path);
+    struct {
+        int width, height, nchannels;
+    } spec{image.width, image.height, image.channels};
     if (spec.nchannels < 3)
         throw InputError(path, "",
                          fmt::format("{} channels: expected an RGB image", spec.nchannels));
@@ -36,13 +36,12 @@ std::vector<Rgb> readStrip(const std::string& path) {
                          fmt::format("{}x{} pixels: expected a strip 32 to 100000 "
                                      "pixels long, pith on the left",
                                      spec.width, spec.height));
-    const bool srgb = !image.nativespec().format.is_floating_point();
+    const bool srgb = !image.floatingPoint;
     std::vector<Rgb> columns(size_t(spec.width));
-    std::vector<float> px(size_t(spec.nchannels));
     for (int x = 0; x < spec.width; ++x) {
         Rgb sum;
         for (int y = 0; y < spec.height; ++y) {
-            image.getpixel(x, y, px.data(), spec.nchannels);
+            const float* px = &image.pixels[(size_t(y) * spec.width + x) * spec.nchannels];
             Rgb c{px[0], px[1], px[2]};
             if (srgb) c = linearFromSrgb(c);
             if (!std::isfinite(c.r + c.g + c.b))

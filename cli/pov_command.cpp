@@ -1,11 +1,11 @@
 #include "pov_command.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <fmt/format.h>
 
 #include <cmath>
 
+#include "renderer/exr_file.h"
+#include "renderer/image_file.h"
 #include "renderer/pov/pov_export.h"
 #include "renderer/scene_file.h"
 #include "util/atomic_output.h"
@@ -27,33 +27,67 @@ struct CompareOptions {
     double maxRmse = -1, minPsnr = -1, maxMean = -1, maxOverPercent = -1;
 };
 
-OIIO::ImageBuf readRgb(const std::string& path) {
-    OIIO::ImageBuf image(path);
-    if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT))
-        throw InputError(path, "", "cannot read the image: " + image.geterror());
-    if (image.nchannels() < 3) throw InputError(path, "", "expected at least R, G, B channels");
-    return OIIO::ImageBufAlgo::channels(image, 3, {0, 1, 2});
+/// R, G, B of an image, 3 floats per pixel; every value must be finite.
+ImageFile readRgb(const std::string& path) {
+    ImageFile image = readImageFile(path);
+    if (image.channels < 3) throw InputError(path, "", "expected at least R, G, B channels");
+    std::vector<float> rgb(size_t(image.width) * image.height * 3);
+    for (size_t i = 0; i < rgb.size() / 3; ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float v = image.pixels[i * image.channels + c];
+            if (!std::isfinite(v))
+                throw InputError(path,
+                                 fmt::format("pixel ({}, {})", i % image.width, i / image.width),
+                                 fmt::format("channel {} is {}: expected a finite value",
+                                             image.channelNames[c], v));
+            rgb[i * 3 + c] = v;
+        }
+    image.pixels = std::move(rgb);
+    image.channels = 3;
+    return image;
 }
 
 int compare(const CompareOptions& o) {
     if (!o.diff.empty()) checkOutputName(o.diff, {".exr"});
-    OIIO::ImageBuf a = readRgb(o.a), b = readRgb(o.b);
-    if (a.spec().width != b.spec().width || a.spec().height != b.spec().height)
-        throw InputError(o.b, "",
-                         fmt::format("is {}x{}, but {} is {}x{}", b.spec().width, b.spec().height,
-                                     o.a, a.spec().width, a.spec().height));
-    auto r = OIIO::ImageBufAlgo::compare(a, b, float(o.threshold), 1e30f);
-    double values = double(a.spec().width) * a.spec().height * 3;
+    const ImageFile a = readRgb(o.a), b = readRgb(o.b);
+    if (a.width != b.width || a.height != b.height)
+        throw InputError(
+            o.b, "",
+            fmt::format("is {}x{}, but {} is {}x{}", b.width, b.height, o.a, a.width, a.height));
+    // Over all R, G, B values: RMSE, PSNR (peak 1), mean and largest absolute error, and the
+    // share of values whose error is over the threshold.
+    struct {
+        double rms_error = 0, PSNR = 0, meanerror = 0, maxerror = 0;
+        int maxx = 0, maxy = 0;
+        size_t nfail = 0;
+    } r;
+    std::vector<float> difference(a.pixels.size());
+    double squares = 0, sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const double d = std::abs(double(a.pixels[i]) - double(b.pixels[i]));
+        difference[i] = static_cast<float>(d);
+        squares += d * d;
+        sum += d;
+        r.nfail += d > o.threshold;
+        if (d > r.maxerror) {
+            r.maxerror = d;
+            r.maxx = static_cast<int>((i / 3) % a.width);
+            r.maxy = static_cast<int>((i / 3) / a.width);
+        }
+    }
+    const double values = double(a.pixels.size());
+    r.rms_error = std::sqrt(squares / values);
+    r.meanerror = sum / values;
+    r.PSNR = r.rms_error > 0 ? 20 * std::log10(1 / r.rms_error) : INFINITY;
     double overPercent = 100.0 * r.nfail / values;
     fmt::print(
         "RMSE {:.6g}  PSNR {:.2f} dB  mean abs error {:.6g}  max abs error {:.6g} at "
         "({}, {})  over {}: {:.3f}% of values\n",
         r.rms_error, r.PSNR, r.meanerror, r.maxerror, r.maxx, r.maxy, o.threshold, overPercent);
     if (!o.diff.empty()) {
-        OIIO::ImageBuf d = OIIO::ImageBufAlgo::absdiff(a, b);
         AtomicOutput out(o.diff);
-        if (!d.write(out.temporaryPath(), OIIO::TypeDesc::FLOAT, "openexr"))
-            throw InputError(o.diff, "", "cannot write the difference: " + d.geterror());
+        writeFloatExr(o.diff, out.temporaryPath(), a.width, a.height, {"R", "G", "B"},
+                      difference.data(), {});
         out.commit();
         fmt::print("wrote {}\n", o.diff);
     }

@@ -26,7 +26,7 @@ std::string_view builtinDisplayConfig();
 std::vector<uint8_t> toDisplay8(std::span<const float> rgb, int width, int height,
                                 double exposureStops = 0);
 
-/// Writes that as an 8-bit RGB PNG with OpenImageIO, atomically (util/atomic_output.h:
+/// Writes that as an 8-bit sRGB PNG (libpng), atomically (util/atomic_output.h:
 /// AtomicOutput writes a temporary file and renames on commit). Throws InputError for a bad path
 /// (not a writable .png name) or a bad $OCIO, std::invalid_argument for an image without pixels.
 void writePreviewPng(const std::string& path, std::span<const float> rgb, int width, int height,

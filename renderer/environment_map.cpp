@@ -1,6 +1,5 @@
 #include "renderer/environment_map.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,6 +7,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "renderer/image_file.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -118,16 +118,15 @@ EnvironmentMap EnvironmentMap::load(const std::string& path, double scale, doubl
     if (!std::filesystem::is_regular_file(path, ec))
         throw InputError(path, "", "cannot read environment map: not a regular file");
 
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw InputError(path, "", "cannot read environment map: " + OIIO::geterror());
-    const OIIO::ImageSpec spec = in->spec();  // copied: close() may reset in->spec()
-    const int width = spec.width, height = spec.height, channels = spec.nchannels;
+    const ImageFile image = readImageFile(path);
+    const int width = image.width, height = image.height, channels = image.channels;
+    const bool grey = channels == 1;  // else R, G, B come first (image_file.h)
     if (channels == 2 || channels < 1)
         throw InputError(path, "",
                          fmt::format("an environment map needs 3 channels (R, G, B) or 1 (grey), "
                                      "found {}",
                                      channels));
-    if (width < 2 || height < 1 || spec.depth > 1)
+    if (width < 2 || height < 1)
         throw InputError(path, "",
                          fmt::format("an environment map must be a 2D image of at least 2 x 1 "
                                      "pixels, found {} x {}",
@@ -142,25 +141,22 @@ EnvironmentMap EnvironmentMap::load(const std::string& path, double scale, doubl
     m.height_ = height;
     m.rotationU_ = rotation / (2 * kPi);
     m.rotationU_ -= std::floor(m.rotationU_);
-    // RGB is read straight into the texels (a 4k map is 96 MB); grey goes through a buffer.
     const size_t count = static_cast<size_t>(width) * height;
-    const bool grey = channels == 1;
     m.texels_.resize(count * 3);
     std::vector<float> greyPixels(grey ? count : 0);
-    if (!in->read_image(0, 0, 0, grey ? 1 : 3, OIIO::TypeDesc::FLOAT,
-                        grey ? greyPixels.data() : m.texels_.data()))
-        throw InputError(path, "", "cannot read environment map: " + in->geterror());
-    in->close();
-
+    for (size_t p = 0; p < count; ++p) {
+        const float* px = &image.pixels[p * channels];
+        if (grey)
+            greyPixels[p] = px[0];
+        else
+            for (int c = 0; c < 3; ++c) m.texels_[p * 3 + c] = px[c];
+    }
     static constexpr const char* kNames[3] = {"R", "G", "B"};
     for (size_t p = 0; p < count; ++p)
         for (int c = 0; c < 3; ++c) {
             float& texel = m.texels_[p * 3 + c];
             float value = grey ? greyPixels[p] : texel;
-            auto where = [&] {
-                return fmt::format("pixel ({}, {})", spec.x + static_cast<int>(p % width),
-                                   spec.y + static_cast<int>(p / width));
-            };
+            auto where = [&] { return fmt::format("pixel ({}, {})", p % width, p / width); };
             const char* channel = grey ? "grey" : kNames[c];
             if (!std::isfinite(value))
                 throw InputError(path, where(), fmt::format("channel {} is {}", channel, value));

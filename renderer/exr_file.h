@@ -1,6 +1,7 @@
 #pragma once
-/// Writing float images as EXR (OpenImageIO) the one way nenrin does it: zip compression,
-/// linear, nenrin:KEY metadata and a fixed date so the same pixels give the same bytes.
+/// Float images as EXR (OpenEXR) the one way nenrin writes them: 32-bit float channels, zip
+/// compression, linear, nenrin:KEY metadata and nothing that changes from run to run, so the
+/// same pixels give the same bytes.
 
 #include <map>
 #include <string>

@@ -1,25 +1,24 @@
 #include "renderer/image_texture.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <cmath>
 
+#include "renderer/image_file.h"
 #include "util/input_error.h"
 
 namespace nenrin {
 
 ImageTexture ImageTexture::load(const std::string& path, int channels) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw InputError(path, "", "cannot read the image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
+    const ImageFile image = readImageFile(path);
+    struct {
+        int width, height, nchannels;
+    } spec{image.width, image.height, image.channels};
+    const std::vector<float>& all = image.pixels;
     ImageTexture t;
     t.width_ = spec.width;
     t.height_ = spec.height;
     t.channels_ = channels;
-    std::vector<float> all(size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
-        throw InputError(path, "", "cannot read the image: " + in->geterror());
     t.texels_.resize(size_t(spec.width) * spec.height * channels);
     for (size_t i = 0; i < size_t(spec.width) * spec.height; ++i) {
         for (int c = 0; c < channels; ++c) {

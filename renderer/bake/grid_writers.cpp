@@ -1,8 +1,6 @@
 #include "renderer/bake/grid_writers.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
-#include <openvdb/openvdb.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,11 +9,13 @@
 #include <memory>
 #include <stdexcept>
 
+#include "renderer/bake/vdb_writer_abi.h"
 #include "renderer/colour_management.h"
 #include "renderer/exr_file.h"
 #include "util/atomic_output.h"
 #include "util/content_hash.h"
 #include "util/input_error.h"
+#include "util/module_loader.h"
 
 namespace nenrin {
 
@@ -75,36 +75,34 @@ void stampContentUuid(const BakedGrid& grid, const std::string& file, const std:
 
 std::vector<std::string> writeVdb(const BakedGrid& grid, const std::string& path) {
     if (!grid.whole()) throw std::invalid_argument("writeVdb: a band of a grid");
-    openvdb::initialize();
+    const auto write = reinterpret_cast<NenrinVdbWriteFn>(
+        moduleSymbol("libnenrin_vdb_writer.so", NENRIN_VDB_MODULE, "nenrin_vdb_write", path));
     AtomicOutput out(path);
-    openvdb::GridPtrVec grids;
-    openvdb::math::Mat4d m = openvdb::math::Mat4d::identity();
-    m.setRow(0, openvdb::math::Vec4d(grid.stepX.x, grid.stepX.y, grid.stepX.z, 0));
-    m.setRow(1, openvdb::math::Vec4d(grid.stepY.x, grid.stepY.y, grid.stepY.z, 0));
-    m.setRow(2, openvdb::math::Vec4d(grid.stepZ.x, grid.stepZ.y, grid.stepZ.z, 0));
-    m.setRow(3, openvdb::math::Vec4d(grid.origin.x, grid.origin.y, grid.origin.z, 1));
-    auto transform = openvdb::math::Transform::createLinearTransform(m);
-    for (int c = 0; c < BakedGrid::kChannels; ++c) {
-        auto g = openvdb::FloatGrid::create(0.f);
-        g->setName(kBakeChannels[c]);
-        g->setTransform(transform->copy());
-        g->setGridClass(openvdb::GRID_UNKNOWN);
-        auto acc = g->getAccessor();
-        for (int k = 0; k < grid.depth; ++k)
-            for (int j = 0; j < grid.height; ++j)
-                for (int i = 0; i < grid.width; ++i)
-                    acc.setValue(openvdb::Coord(i, j, k), grid.at(i, j, k)[c]);
-        for (const auto& [key, value] : grid.metadata)
-            g->insertMeta("nenrin:" + key, openvdb::StringMetadata(value));
-        grids.push_back(g);
+    NenrinVdbGrid g{};
+    g.width = grid.width;
+    g.height = grid.height;
+    g.depth = grid.depth;
+    g.channels = BakedGrid::kChannels;
+    g.data = grid.data.data();
+    g.channelNames = kBakeChannels.data();
+    const Vec3 rows[4] = {grid.stepX, grid.stepY, grid.stepZ, grid.origin};
+    for (int r = 0; r < 4; ++r) {
+        g.indexToWorld[r * 4 + 0] = rows[r].x;
+        g.indexToWorld[r * 4 + 1] = rows[r].y;
+        g.indexToWorld[r * 4 + 2] = rows[r].z;
+        g.indexToWorld[r * 4 + 3] = r == 3 ? 1 : 0;
     }
-    try {
-        openvdb::io::File file(out.temporaryPath());
-        file.write(grids);
-        file.close();
-    } catch (const std::exception& e) {
-        throw InputError(path, "", std::string("cannot write VDB: ") + e.what());
+    std::vector<const char*> keys, values;
+    for (const auto& [key, value] : grid.metadata) {
+        keys.push_back(key.c_str());
+        values.push_back(value.c_str());
     }
+    g.metadataKeys = keys.data();
+    g.metadataValues = values.data();
+    g.metadataCount = static_cast<int>(keys.size());
+    char error[1024] = {};
+    if (write(out.temporaryPath().c_str(), &g, error, sizeof error) != 0)
+        throw InputError(path, "", std::string("cannot write VDB: ") + error);
     stampContentUuid(grid, out.temporaryPath(), path);
     out.commit();
     return {path};
