@@ -28,7 +28,6 @@ struct Film {
 
     /// A frame of w x h holding rows [first, first + count) (count < 0: to the bottom).
     void resize(int w, int h, int first = 0, int count = -1);
-    bool whole() const { return firstRow == 0 && rows == height; }
 };
 
 /// The EXR channel names of a film, in file order ("samples" only if sampling was adaptive).

@@ -144,6 +144,11 @@ MergedJob mergeParts(const std::vector<std::string>& paths) {
             hash = partHash;
             job.kind = kind;
             job.parts = number.parts;
+            if (double(exr.width) * exr.height * exr.channels.size() > double(1u << 30))
+                throw InputError(path, "data window",
+                                 fmt::format("a {}x{} frame of {} channels: over the limit of "
+                                             "2^30 values",
+                                             exr.width, exr.height, exr.channels.size()));
             owner.assign(number.parts, "");
             metadata = withoutPartKeys(exr.metadata);
             job.image.width = exr.width;
