@@ -9,6 +9,7 @@
 
 #include "renderer/farm/batch_file.h"
 #include "renderer/farm/slurm_scripts.h"
+#include "util/atomic_output.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -142,6 +143,7 @@ void run(const FarmOptions& o, std::vector<std::string> args) {
     }
     job.name = o.name.empty() ? jobName(stem) : o.name;
     for (const std::string& f : writeSlurmJob(job)) fmt::print("wrote {}\n", f);
+    commitOutputs();  // the scripts must be in place before they are submitted
     if (o.noSubmit) {
         fmt::print("not submitted: run {}/submit.sh [sbatch options]\n", job.folder);
         return;

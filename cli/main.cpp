@@ -15,6 +15,7 @@
 #include "split_commands.h"
 #include "tree_command.h"
 #include "tree_model_commands.h"
+#include "util/atomic_output.h"
 #include "util/input_error.h"
 
 int main(int argc, char** argv) {
@@ -32,7 +33,10 @@ int main(int argc, char** argv) {
     nenrin::addTreeCommands(app);
     nenrin::addStandCommands(app);
     try {
+        // Every output of the command reaches its final name only if the command succeeds.
+        nenrin::OutputTransaction outputs;
         app.parse(argc, argv);
+        nenrin::commitOutputs();
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const nenrin::InputError& e) {

@@ -150,7 +150,10 @@ void addPovCommands(CLI::App& app) {
                     "Fail if more than this % of values are over --threshold");
     cmp->callback([c] {
         int code = compare(*c);
-        if (code != 0) throw CLI::RuntimeError(code);
+        if (code != 0) {
+            commitOutputs();  // the difference image is the report of a failed comparison
+            throw CLI::RuntimeError(code);
+        }
     });
 }
 

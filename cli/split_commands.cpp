@@ -10,6 +10,7 @@
 #include "render_command.h"
 #include "renderer/farm/batch_file.h"
 #include "renderer/farm/part_merge.h"
+#include "util/atomic_output.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -95,6 +96,7 @@ void addBatchCommand(CLI::App& app) {
             job.threads = o->threads;
             job.quiet = o->quiet;
             runRender(job);
+            commitOutputs();  // a later frame's failure must not take this one with it
         }
     });
 }

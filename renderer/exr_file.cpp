@@ -7,12 +7,14 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
 #include <exception>
+#include <fstream>
 
 #include "util/input_error.h"
 
@@ -43,14 +45,20 @@ void writeFloatExr(const std::string& finalPath, const std::string& writePath, i
                      Imf::Slice(Imf::FLOAT, const_cast<char*>(base + c * sizeof(float)), stride,
                                 stride * width));
     }
+    // Our own stream, so that the last writes (the line offsets, written when the file object
+    // is destroyed, where OpenEXR cannot report an error) are checked when it is closed.
+    std::ofstream stream(writePath, std::ios::binary | std::ios::trunc);
     try {
-        Imf::OutputFile file(writePath.c_str(), header);
+        Imf::StdOFStream out(stream, writePath.c_str());
+        Imf::OutputFile file(out, header);
         file.setFrameBuffer(frame);
         file.writePixels(end - band.begin);
     } catch (const std::exception& e) {
         throw InputError(finalPath, "output",
                          std::string("could not write the EXR (disk full?): ") + e.what());
     }
+    stream.close();
+    if (!stream) throw InputError(finalPath, "output", "could not write the EXR (disk full?)");
 }
 
 FloatExr readFloatExr(const std::string& path) {

@@ -1,11 +1,13 @@
 #include "util/atomic_output.h"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <system_error>
 
 #include "util/input_error.h"
@@ -24,6 +26,18 @@ void checkOutputPath(const std::string& path) {
                          "cannot write output: folder '" + dir.string() + "' does not exist");
     if (fs::is_directory(p, ec))
         throw InputError(path, "", "cannot write output: this is a folder, expected a file name");
+    // An output replaces its target by a rename: only ever a regular file (never a device, a
+    // FIFO or a socket, and not the target of a symbolic link, which would be replaced by a file).
+    const fs::file_status target = fs::symlink_status(p, ec);
+    if (!ec && fs::exists(target) && !fs::is_regular_file(target))
+        throw InputError(path, "",
+                         fmt::format("cannot write output: it exists and is {}, not a regular file",
+                                     fs::is_symlink(target)          ? "a symbolic link"
+                                     : fs::is_fifo(target)           ? "a FIFO"
+                                     : fs::is_socket(target)         ? "a socket"
+                                     : fs::is_block_file(target)     ? "a block device"
+                                     : fs::is_character_file(target) ? "a character device"
+                                                                     : "not a regular file"));
     if (access(dir.c_str(), W_OK) != 0)
         throw InputError(path, "",
                          "cannot write output: folder '" + dir.string() + "' is not writable");
@@ -80,10 +94,64 @@ AtomicOutput::~AtomicOutput() {
     }
 }
 
-void AtomicOutput::commit() {
+namespace {
+
+/// The open transaction's files: (temporary, final) in the order they were finished.
+struct Pending {
+    bool open = false;
+    std::vector<std::pair<std::string, std::string>> files;
+};
+Pending& pending() {
+    static Pending p;
+    return p;
+}
+std::mutex& pendingMutex() {
+    static std::mutex m;
+    return m;
+}
+
+void rename(const std::string& temporary, const std::string& final) {
     std::error_code ec;
-    fs::rename(temporary_, final_, ec);
-    if (ec) throw InputError(final_, "", "cannot write output: " + ec.message());
+    fs::rename(temporary, final, ec);
+    if (ec) throw InputError(final, "", "cannot write output: " + ec.message());
+}
+
+}  // namespace
+
+OutputTransaction::OutputTransaction() {
+    std::lock_guard<std::mutex> lock(pendingMutex());
+    pending().open = true;
+    pending().files.clear();
+}
+
+OutputTransaction::~OutputTransaction() {
+    std::lock_guard<std::mutex> lock(pendingMutex());
+    std::error_code ec;
+    for (const auto& [temporary, final] : pending().files) fs::remove(temporary, ec);
+    pending() = {};
+}
+
+void commitOutputs() {
+    std::lock_guard<std::mutex> lock(pendingMutex());
+    auto& files = pending().files;
+    // Renamed in order; should one fail (the folder vanished), the rest stay temporary and
+    // are removed with the transaction.
+    while (!files.empty()) {
+        rename(files.front().first, files.front().second);
+        files.erase(files.begin());
+    }
+}
+
+void AtomicOutput::commit() {
+    {
+        std::lock_guard<std::mutex> lock(pendingMutex());
+        if (pending().open) {
+            pending().files.emplace_back(temporary_, final_);
+            committed_ = true;  // the transaction owns the temporary file now
+            return;
+        }
+    }
+    rename(temporary_, final_);
     committed_ = true;
 }
 

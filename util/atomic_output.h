@@ -5,6 +5,7 @@
 /// exception), the destructor removes the temporary file.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace nenrin {
@@ -24,6 +25,24 @@ std::string lowerExtension(const std::string& path);
 /// Writes `text` to `path` through an AtomicOutput: all of it, or nothing (the old file, if
 /// any, stays). Throws InputError "cannot write the <what> (disk full?)" when the writing fails.
 void writeTextAtomically(const std::string& path, const std::string& text, const std::string& what);
+
+/// All the outputs of a command, committed together. While a transaction is open,
+/// AtomicOutput::commit() hands its finished temporary file to it instead of renaming it;
+/// commitOutputs() renames every file handed over so far, and a transaction destroyed before
+/// that removes them all. So a command that fails after writing some of its outputs (an EXR
+/// written, its PNG not) leaves none of them. One transaction at a time (the command's).
+class OutputTransaction {
+public:
+    OutputTransaction();
+    ~OutputTransaction();
+    OutputTransaction(const OutputTransaction&) = delete;
+    OutputTransaction& operator=(const OutputTransaction&) = delete;
+};
+
+/// Renames the files handed to the open transaction to their final names (for a command that
+/// must publish some outputs before it goes on: a batch after each frame, job scripts before
+/// they are submitted). Without a transaction, nothing to do.
+void commitOutputs();
 
 class AtomicOutput {
 public:

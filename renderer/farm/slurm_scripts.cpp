@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "util/atomic_output.h"
 #include "util/input_error.h"
@@ -57,9 +58,15 @@ std::vector<std::string> writeSlurmJob(const SlurmJob& job) {
     std::vector<std::string> files;
     auto write = [&](const std::string& name, const std::string& text) {
         const std::string path = (fs::path(job.folder) / name).string();
-        writeTextAtomically(path, text, "job script");
-        fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add,
-                        ec);
+        AtomicOutput out(path);
+        std::ofstream f(out.temporaryPath(), std::ios::binary);
+        f << text;
+        f.close();
+        if (!f) throw InputError(path, "", "cannot write the job script (disk full?)");
+        fs::permissions(out.temporaryPath(),
+                        fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                        fs::perm_options::add, ec);
+        out.commit();
         files.push_back(path);
     };
 

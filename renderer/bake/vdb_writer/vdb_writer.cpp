@@ -4,6 +4,7 @@
 #include <openvdb/openvdb.h>
 
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include "renderer/bake/vdb_writer_abi.h"
@@ -39,6 +40,18 @@ extern "C" __attribute__((visibility("default"))) int nenrin_vdb_write(const cha
         openvdb::io::File file(path);
         file.write(grids);
         file.close();
+        // OpenVDB does not report a failed write (a full disk leaves a short file and no
+        // error): read the file back whole, which throws if any of it is missing.
+        size_t stored = 0;
+        try {
+            openvdb::io::File check(path);
+            check.open(false);
+            stored = check.getGrids()->size();
+            check.close();
+        } catch (const std::exception&) {
+        }
+        if (stored != grids.size())
+            throw std::runtime_error("the file written is incomplete (disk full?)");
         return 0;
     } catch (const std::exception& e) {
         if (errorSize > 0) {

@@ -1,0 +1,53 @@
+// End-to-end tests of how outputs are written: a command's outputs reach their names together
+// or not at all, and an existing target that is not a regular file is never replaced.
+
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+
+#include "tests/cli/cli_fixture.h"
+
+namespace {
+
+const fs::path kScene = kSourceDir / "tests/data/scenes/small-glulam.json";
+
+class OutputsCliTest : public CliTest {};
+
+TEST_F(OutputsCliTest, AFailedPngTakesTheExrWithIt) {
+    // A bad $OCIO fails the preview after the EXR was written: neither may stay.
+    setenv("OCIO", (in_ / "missing.ocio").c_str(), 1);
+    RunResult r = run({"render", kScene.string(), "-q", "--res", "32x20", "--spp", "1", "-o",
+                       (out_ / "a.exr").string(), "--png", (out_ / "a.png").string()});
+    unsetenv("OCIO");
+    expectInputError(r, {"missing.ocio"});
+}
+
+TEST_F(OutputsCliTest, ACommandThatFailsAfterWritingLeavesNothing) {
+    // Fifteen years grow no tree old enough to pick as "suppressed": the stand was already
+    // written when that turned out.
+    expectInputError(run({"stand", "kunii", "--years", "15", "-o", (out_ / "s.json").string()}),
+                     {"no living tree"});
+}
+
+TEST_F(OutputsCliTest, TargetsThatAreNotRegularFilesAreNeverReplaced) {
+    const fs::path fifo = in_ / "fifo.exr", link = in_ / "link.exr", target = in_ / "target.exr";
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0644), 0);
+    std::ofstream(target) << "keep";
+    fs::create_symlink(target, link);
+    std::vector<std::pair<fs::path, std::string>> cases = {{fifo, "a FIFO"},
+                                                           {link, "a symbolic link"}};
+    // A copy of /dev/null's device node (root only: as root, `-o /dev/null` once destroyed it).
+    const fs::path device = in_ / "null.exr";
+    if (mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0)
+        cases.push_back({device, "a character device"});
+    for (const auto& [path, kind] : cases) {
+        RunResult r = run(
+            {"render", kScene.string(), "-q", "--res", "16x16", "--spp", "1", "-o", path.string()});
+        expectInputError(r, {path.string(), kind, "not a regular file"});
+    }
+    EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+    EXPECT_EQ(readText(target), "keep");
+    if (cases.size() == 3) EXPECT_TRUE(fs::is_character_file(fs::symlink_status(device)));
+}
+
+}  // namespace
