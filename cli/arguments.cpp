@@ -10,6 +10,19 @@
 
 namespace nenrin {
 
+CLI::Validator finiteRange(double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
+                return fmt::format("expected a finite number in [{:g}, {:g}], found \"{}\"", lo, hi,
+                                   text.size() > 40 ? text.substr(0, 40) + "..." : text);
+            return "";
+        },
+        fmt::format("FINITE in [{:g}, {:g}]", lo, hi));
+}
+
 namespace {
 
 InputError optionError(const std::string& option, const std::string& message) {

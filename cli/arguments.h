@@ -2,11 +2,19 @@
 /// Parsing of the CLI's compound arguments ("0.4x0.3m", "512x256", "x0,y0,z0,x1,y1,z1").
 /// Errors are InputErrors located at the option, e.g. "command line: --size: ...".
 
+#include <CLI/CLI.hpp>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace nenrin {
+
+/// A CLI11 check for a number option: finite (no nan, inf or overflow to inf) and within
+/// [lo, hi], with a short message ("expected a finite number in [-10000, 10000], found 1e+308").
+CLI::Validator finiteRange(double lo, double hi);
+
+/// Where nenrin works in tree or scene space (m): no tree and no product is 10 km away.
+inline constexpr double kMaxCoordinate = 1e4;
 
 /// "WxH" or "WxHm": two positive sizes in metres.
 std::pair<double, double> parseSizeMetres(const std::string& text, const std::string& option);

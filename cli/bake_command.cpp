@@ -190,10 +190,12 @@ void addBakeCommands(CLI::App& app) {
         auto t0 = std::chrono::steady_clock::now();
         SliceSpec spec;
         spec.plane = parseSlicePlane(plane);
-        if (!std::isfinite(at))
-            throw InputError("command line", "--at", "expected a finite number");
-        if (!std::isfinite(bottom))
-            throw InputError("command line", "--bottom", "expected a finite number");
+        for (auto [value, option] : {std::pair{at, "--at"}, std::pair{bottom, "--bottom"}})
+            if (!std::isfinite(value) || std::abs(value) > kMaxCoordinate)
+                throw InputError("command line", option,
+                                 fmt::format("expected a finite number of metres in [-{:g}, {:g}], "
+                                             "found {:g}",
+                                             kMaxCoordinate, kMaxCoordinate, value));
         spec.at = at;
         spec.bottom = bottom;
         std::tie(spec.width, spec.height) = parseSizeMetres(size, "--size");
@@ -239,6 +241,11 @@ void addBakeCommands(CLI::App& app) {
         VolumeSpec spec;
         spec.lower = {b[0], b[1], b[2]};
         spec.upper = {b[3], b[4], b[5]};
+        for (double v : b)
+            if (std::abs(v) > kMaxCoordinate)
+                throw InputError("command line", "--box",
+                                 fmt::format("{:g} m is beyond the +-{:g} m nenrin works in", v,
+                                             kMaxCoordinate));
         for (int i = 0; i < 3; ++i)
             if (!(spec.upper[i] > spec.lower[i]))
                 throw InputError("command line", "--box",

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "arguments.h"
 #include "renderer/exr_file.h"
 #include "renderer/image_file.h"
 #include "renderer/pov/pov_export.h"
@@ -141,13 +142,17 @@ void addPovCommands(CLI::App& app) {
     cmp->add_option("b", c->b, "Second image")->required();
     cmp->add_option("--diff", c->diff, "Write |A - B| as an EXR");
     cmp->add_option("--threshold", c->threshold, "Per-value error counted as over")
-        ->check(CLI::PositiveNumber)
+        ->check(finiteRange(0, 1e30))
         ->default_val(0.02);
-    cmp->add_option("--max-rmse", c->maxRmse, "Fail if the RMSE is larger");
-    cmp->add_option("--min-psnr", c->minPsnr, "Fail if the PSNR (dB) is smaller");
-    cmp->add_option("--max-mean", c->maxMean, "Fail if the mean absolute error is larger");
+    cmp->add_option("--max-rmse", c->maxRmse, "Fail if the RMSE is larger")
+        ->check(finiteRange(0, 1e30));
+    cmp->add_option("--min-psnr", c->minPsnr, "Fail if the PSNR (dB) is smaller")
+        ->check(finiteRange(0, 1e3));
+    cmp->add_option("--max-mean", c->maxMean, "Fail if the mean absolute error is larger")
+        ->check(finiteRange(0, 1e30));
     cmp->add_option("--max-over-percent", c->maxOverPercent,
-                    "Fail if more than this % of values are over --threshold");
+                    "Fail if more than this % of values are over --threshold")
+        ->check(finiteRange(0, 100));
     cmp->callback([c] {
         int code = compare(*c);
         if (code != 0) {

@@ -139,7 +139,7 @@ void addRenderCommand(CLI::App& app) {
            "the square root of its mean (summed over R,G,B) is at most this, for it and "
            "its neighbours (e.g. 0.01; 0 = off, every pixel takes --spp; overrides the "
            "scene)")
-        ->check(CLI::Range(0.0, 1.0));
+        ->check(finiteRange(0.0, 1.0));
     cmd->add_option("--min-spp", o->minSpp,
                     "Adaptive sampling: samples every pixel takes before its noise is estimated "
                     "(0 = min(spp, 16); overrides the scene)")

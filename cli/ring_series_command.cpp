@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "arguments.h"
 #include "skeleton/ring_series.h"
 #include "skeleton/skeleton_file.h"
 #include "util/atomic_output.h"
@@ -107,7 +108,7 @@ void addRingSeriesCommand(CLI::App& tree) {
     rings
         ->add_option("--mean-width", o->meanWidthMm,
                      "Scale the series to this mean ring width, mm (0 = as measured)")
-        ->check(CLI::Range(0.0, 100.0))
+        ->check(finiteRange(0.0, 100.0))
         ->default_val(0);
     rings->callback([o] { runRings(*o); });
 }

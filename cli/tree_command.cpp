@@ -167,22 +167,22 @@ CLI::App* addTreeCommands(CLI::App& app) {
     imp->add_option("--format", io->format, "auto, gran1, qsm or branches (measured-branch JSON)")
         ->default_val("auto");
     imp->add_option("--rings", io->rings, "Gran_1: rings at the butt (sets the ring width)")
-        ->check(CLI::PositiveNumber)
+        ->check(finiteRange(1, 10000))
         ->default_val(60);
     imp->add_option("--height-growth", io->heightGrowth,
                     "Gran_1: m/year of height growth (0 = from the bark's taper)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(finiteRange(0, 100))
         ->default_val(0);
     imp->add_option("--branch-growth", io->branchGrowth, "Gran_1: m/year a knot's branch grew")
-        ->check(CLI::PositiveNumber)
+        ->check(finiteRange(1e-6, 100))
         ->default_val(0.2);
     imp->add_option("--knot-gamma", io->knotGamma,
                     "Gran_1: a knot's radial speed relative to the stem")
-        ->check(CLI::PositiveNumber)
+        ->check(finiteRange(1e-6, 100))
         ->default_val(0.125);
     imp->add_option("--elongation-speed", io->elongationSpeed,
                     "QSM: m/year along every axis (QSMs carry no time)")
-        ->check(CLI::PositiveNumber)
+        ->check(finiteRange(1e-6, 100))
         ->default_val(0.5);
     imp->callback([io] { runImport(*io); });
 
@@ -196,9 +196,10 @@ CLI::App* addTreeCommands(CLI::App& app) {
         ->check(CLI::Range(1, 4096))
         ->default_val(16);
     pre->add_option("--azimuth", po->preview.azimuth, "Camera azimuth around the tree, degrees")
+        ->check(finiteRange(-3600, 3600))
         ->default_val(30);
     pre->add_option("--elevation", po->preview.elevation, "Camera elevation, degrees")
-        ->check(CLI::Range(-89.0, 89.0))
+        ->check(finiteRange(-89.0, 89.0))
         ->default_val(8);
     pre->add_option("--threads", po->preview.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024))

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "arguments.h"
 #include "skeleton/skeleton_writer.h"
 #include "skeleton/sources/akagi/akagi_model.h"
 #include "skeleton/sources/hayashi/hayashi_conifer.h"
@@ -276,7 +277,7 @@ void addStandCommands(CLI::App& app) {
     kunii
         ->add_option("--irradiance", o->irradiance,
                      "Above-canopy irradiance I0 (1 = full sun), replacing the preset's")
-        ->check(CLI::Range(0.0, 100.0));
+        ->check(finiteRange(0.0, 100.0));
     kunii->add_option("-o,--output", o->output, "Output stand file (.json)")->required();
     kunii->add_flag("-q,--quiet", o->quiet, "No progress bar");
     kunii->callback([o] { runStand(*o); });

@@ -1,5 +1,7 @@
 #include "grain/growth_field.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -362,14 +364,31 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     // for that chunk, and the per-point work.
     const size_t n = input.size();
     if (n == 0) return;
+    // The field's domain: beyond it squared distances overflow and no segment would be nearest
+    // (once a crash). Farther points are evaluated as if on its edge, where the answer is long
+    // settled (bark or beyond); NaN has no answer. Callers bound their inputs where they read
+    // them; this keeps a missed case harmless.
+    auto inDomain = [](const Vec3& p) {
+        if (std::isnan(p.x) || std::isnan(p.y) || std::isnan(p.z))
+            throw std::domain_error("growth field: a point with a NaN coordinate");
+        if (std::abs(p.x) <= kFieldDomain && std::abs(p.y) <= kFieldDomain &&
+            std::abs(p.z) <= kFieldDomain)
+            return p;
+        return Vec3{std::clamp(p.x, -kFieldDomain, kFieldDomain),
+                    std::clamp(p.y, -kFieldDomain, kFieldDomain),
+                    std::clamp(p.z, -kFieldDomain, kFieldDomain)};
+    };
     auto& pts = scratch.points;
     pts.resize(n);
     if (stencil <= 1 || n % stencil != 0) {
-        for (size_t i = 0; i < n; ++i) pts[i] = input[i] + swayDisplacement(input[i], sway_);
+        for (size_t i = 0; i < n; ++i) {
+            const Vec3 p = inDomain(input[i]);
+            pts[i] = p + swayDisplacement(p, sway_);
+        }
     } else {
         for (size_t i = 0; i < n; i += stencil) {
-            const Vec3 d = swayDisplacement(input[i], sway_);
-            for (size_t j = i; j < i + stencil; ++j) pts[j] = input[j] + d;
+            const Vec3 d = swayDisplacement(inDomain(input[i]), sway_);
+            for (size_t j = i; j < i + stencil; ++j) pts[j] = inDomain(input[j]) + d;
         }
     }
     const Box batch = boxOf(pts);

@@ -31,6 +31,10 @@
 
 namespace nenrin {
 
+/// The field is evaluated within this many metres of the tree's origin on each axis; farther
+/// points are moved onto that edge (squared distances must not overflow).
+inline constexpr double kFieldDomain = 1e100;
+
 struct GrowthSample {
     double T = 0;                 ///< growth time, years, all terms applied
     double trunkTime = 0;         ///< T1: the trunk path's time

@@ -1,6 +1,7 @@
 #include "renderer/ray_scene.h"
 
 #include <embree3/rtcore.h>
+#include <fmt/format.h>
 
 #include <array>
 #include <cmath>
@@ -11,6 +12,23 @@
 namespace nenrin {
 
 namespace {
+
+/// Embree asserts (and aborts the process) on a ray it deems invalid: a coordinate beyond
+/// ~1.8e18 or not finite, or a negative or NaN extent. Scene inputs are bounded where they are
+/// read; this keeps a missed case an error instead of an abort.
+void checkRay(const Ray& ray, double tMax) {
+    constexpr double kLimit = 1e18;
+    const double values[6] = {ray.origin.x,    ray.origin.y,    ray.origin.z,
+                              ray.direction.x, ray.direction.y, ray.direction.z};
+    bool ok = tMax >= 0;  // false for NaN too
+    for (double v : values) ok = ok && std::abs(v) < kLimit;
+    if (!ok)
+        throw std::domain_error(fmt::format(
+            "renderer: a ray from ({:g}, {:g}, {:g}) along ({:g}, {:g}, {:g}) is outside what "
+            "Embree can trace (a camera, light or object placed absurdly far?)",
+            ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y,
+            ray.direction.z));
+}
 
 /// What a geometry id stands for, and what shading needs of it.
 struct GeometryRecord {
@@ -171,6 +189,7 @@ SurfaceHit RayScene::intersect(const Ray& ray) const {
     rh.ray.tfar = std::numeric_limits<float>::infinity();
     rh.ray.mask = ~0u;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    checkRay(ray, 0);
     rtcIntersect1(impl_->scene, &context, &rh);
     return toHit(rh.ray, rh.hit, impl_->records);
 }
@@ -181,6 +200,7 @@ void RayScene::intersect16(const Ray* rays, int count, SurfaceHit* hits) const {
     for (int i = 0; i < 16; ++i) {
         valid[i] = i < count ? -1 : 0;
         const Ray& r = rays[i < count ? i : 0];
+        if (i < count) checkRay(r, 0);
         rh.ray.org_x[i] = float(r.origin.x);
         rh.ray.org_y[i] = float(r.origin.y);
         rh.ray.org_z[i] = float(r.origin.z);
@@ -225,6 +245,7 @@ void RayScene::occluded16(const Ray* rays, const double* tMax, int count, bool* 
     for (int i = 0; i < 16; ++i) {
         valid[i] = i < count ? -1 : 0;
         const Ray& ray = rays[i < count ? i : 0];
+        if (i < count) checkRay(ray, tMax[i]);
         r.org_x[i] = float(ray.origin.x);
         r.org_y[i] = float(ray.origin.y);
         r.org_z[i] = float(ray.origin.z);
@@ -257,6 +278,7 @@ bool RayScene::occluded(const Ray& ray, double tMax) const {
     r.tnear = 0;
     r.tfar = float(tMax);
     r.mask = ~0u;
+    checkRay(ray, tMax);
     rtcOccluded1(impl_->scene, &context, &r);
     return r.tfar < 0;
 }

@@ -127,6 +127,12 @@ double JsonReader::toNumber(const nlohmann::json& v, const std::string& where) c
         throw InputError(file_, where, fmt::format("expected a number, found {}", jsonTypeName(v)));
     double d = v.get<double>();
     if (!std::isfinite(d)) throw InputError(file_, where, "expected a finite number");
+    // No length (m), time (years), speed or colour nenrin reads comes near this: larger values
+    // are typos or attacks, and would overflow to infinity in the field or the renderer.
+    if (std::abs(d) > kMaxJsonMagnitude)
+        throw InputError(file_, where,
+                         fmt::format("{:g} is beyond the +-{:g} nenrin accepts for any value", d,
+                                     kMaxJsonMagnitude));
     return d;
 }
 

@@ -18,6 +18,9 @@
 
 namespace nenrin {
 
+/// The largest magnitude of any real number in a nenrin JSON file.
+inline constexpr double kMaxJsonMagnitude = 1e9;
+
 /// Reads and parses a JSON file. Missing files and syntax errors (with line and column) throw
 /// InputError.
 nlohmann::json parseJsonFile(const std::string& path);
