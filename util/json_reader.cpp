@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <vector>
 
 namespace nenrin {
 
@@ -48,7 +51,84 @@ struct ErrorLocator : nlohmann::json_sax<nlohmann::json> {
     }
 };
 
+/// What a strict reader refuses that nlohmann's parser accepts: a key twice in one object (the
+/// last would silently win, hiding a bad value), and nesting deeper than kMaxJsonDepth (deep
+/// documents overflow the stack of recursive readers). A SAX pass before the real parse, which
+/// keeps the JSON path for the message.
+struct StrictnessCheck : nlohmann::json_sax<nlohmann::json> {
+    struct Level {
+        bool object;
+        std::set<std::string> keys;
+        std::string key;
+        size_t index = 0;
+    };
+    std::vector<Level> levels;
+    std::string problem, where;
+
+    std::string path() const {
+        std::string p;
+        for (const Level& l : levels) {
+            if (l.object) {
+                if (!l.key.empty()) p += (p.empty() ? "" : ".") + l.key;
+            } else {
+                p += fmt::format("[{}]", l.index);
+            }
+        }
+        return p.empty() ? "(top level)" : p;
+    }
+    bool value() {
+        if (!levels.empty() && !levels.back().object) ++levels.back().index;
+        return true;
+    }
+    bool open(bool object) {
+        if (levels.size() >= kMaxJsonDepth) {
+            where = path();
+            if (where.size() > 100) where = "..." + where.substr(where.size() - 100);
+            problem = fmt::format("nested more than {} levels deep", kMaxJsonDepth);
+            return false;
+        }
+        levels.push_back({object, {}, "", 0});
+        return true;
+    }
+    bool close() {
+        levels.pop_back();
+        return value();
+    }
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override { return open(true); }
+    bool key(string_t& k) override {
+        Level& l = levels.back();
+        l.key = k;
+        if (!l.keys.insert(k).second) {
+            where = path();
+            problem = fmt::format(
+                "\"{}\" a second time in this object (the last would "
+                "silently win)",
+                k);
+            return false;
+        }
+        return true;
+    }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override { return open(false); }
+    bool end_array() override { return close(); }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;  // syntax errors are reported by the real parse
+    }
+};
+
 nlohmann::json parseJsonText(const std::string& text, const std::string& name) {
+    if (size_t nul = text.find('\0'); nul != std::string::npos)
+        throw InputError(name, lineColumn(text, nul), "a NUL byte: expected JSON text");
+    StrictnessCheck check;
+    nlohmann::json::sax_parse(text, &check);
+    if (!check.problem.empty()) throw InputError(name, check.where, check.problem);
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::out_of_range& e) {
@@ -77,6 +157,19 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& name) {
 }
 
 nlohmann::json parseJsonFile(const std::string& path) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (std::filesystem::is_directory(status))
+        throw InputError(path, "", "this is a folder: expected a JSON file");
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw InputError(path, "",
+                         "not a regular file (a device or a FIFO?): expected a JSON file");
+    if (std::filesystem::is_regular_file(status) &&
+        std::filesystem::file_size(path, ec) > kMaxJsonFileBytes)
+        throw InputError(
+            path, "",
+            fmt::format("{} MB: over the {} MB nenrin reads as JSON",
+                        std::filesystem::file_size(path, ec) >> 20, kMaxJsonFileBytes >> 20));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, "", "cannot open file for reading (does it exist?)");
     std::stringstream ss;

@@ -6,6 +6,7 @@
 /// naming the file, the path (`branches[2].gamma`) and what was expected. finish() rejects keys
 /// that were never read, so a misspelled parameter is an error instead of a silent default.
 
+#include <cstdint>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -17,6 +18,10 @@
 #include "util/vec3.h"
 
 namespace nenrin {
+
+/// Limits of nenrin's JSON reading: the deepest nesting and the largest file.
+inline constexpr size_t kMaxJsonDepth = 64;
+inline constexpr uintmax_t kMaxJsonFileBytes = uintmax_t(256) << 20;
 
 /// The largest magnitude of any real number in a nenrin JSON file.
 inline constexpr double kMaxJsonMagnitude = 1e9;

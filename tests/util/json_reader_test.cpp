@@ -19,6 +19,40 @@ TEST(JsonReader, SyntaxErrorNamesLineAndColumn) {
     EXPECT_NE(msg.find("f.json: line 3, column 8: invalid JSON"), std::string::npos) << msg;
 }
 
+TEST(JsonReader, ADuplicateKeyIsRefusedWithItsPath) {
+    std::string msg =
+        errorOf([] { parseJsonText(R"({"b": [{"gamma": 1, "x": 0, "gamma": 2}]})", "d.json"); });
+    EXPECT_NE(msg.find("d.json: b[0].gamma: \"gamma\" a second time"), std::string::npos) << msg;
+    // The same key in two objects is fine.
+    EXPECT_NO_THROW(parseJsonText(R"([{"a": 1}, {"a": 2}])", "ok.json"));
+}
+
+TEST(JsonReader, DeepNestingAndNulBytesAreRefused) {
+    std::string deep(65, '[');
+    deep += std::string(65, ']');
+    std::string msg = errorOf([&] { parseJsonText(deep, "deep.json"); });
+    EXPECT_NE(msg.find("nested more than 64 levels"), std::string::npos) << msg;
+    EXPECT_NO_THROW(parseJsonText(std::string(64, '[') + std::string(64, ']'), "ok.json"));
+    msg = errorOf([] { parseJsonText(std::string("{\"a\": 1}\0{\"b\": 2}", 17), "nul.json"); });
+    EXPECT_NE(msg.find("nul.json: line 1, column 9: a NUL byte"), std::string::npos) << msg;
+}
+
+TEST(JsonReader, FoldersAndDevicesAreNotJsonFiles) {
+    std::string msg = errorOf([] { parseJsonFile("/tmp"); });
+    EXPECT_NE(msg.find("this is a folder"), std::string::npos) << msg;
+    msg = errorOf([] { parseJsonFile("/dev/zero"); });
+    EXPECT_NE(msg.find("not a regular file"), std::string::npos) << msg;
+}
+
+TEST(JsonReader, HugeNumbersAreRefused) {
+    auto j = parseJsonText(R"({"x": 1e300, "y": -2e9, "z": 1e9})", "h.json");
+    JsonReader r(j, "h.json");
+    EXPECT_NE(errorOf([&] { r.number("x", 0); }).find("h.json: x: 1e+300 is beyond"),
+              std::string::npos);
+    EXPECT_NE(errorOf([&] { r.number("y", 0); }).find("beyond"), std::string::npos);
+    EXPECT_EQ(r.number("z", 0), 1e9);
+}
+
 TEST(JsonReader, TruncatedFileIsCalledTruncated) {
     std::string msg = errorOf([] { parseJsonText("{\"a\": [1, 2", "t.json"); });
     EXPECT_NE(msg.find("t.json: line 1"), std::string::npos) << msg;
