@@ -1,10 +1,12 @@
 #include "util/atomic_output.h"
 
 #include <fmt/format.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -75,10 +77,36 @@ void writeTextAtomically(const std::string& path, const std::string& text,
     out.commit();
 }
 
+/// Removes the temporary files of this output left by processes that died while writing it
+/// (killed, power lost): `.STEM.partial-PID.EXT` whose PID is no longer running.
+void removeStalePartials(const fs::path& dir, const fs::path& final) {
+    const std::string prefix = "." + final.stem().string() + ".partial-";
+    const std::string extension = final.extension().string();
+    std::error_code ec;
+    for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator();
+         it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.rfind(prefix, 0) != 0 || name.size() < prefix.size() + extension.size() ||
+            name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
+            continue;
+        const std::string digits =
+            name.substr(prefix.size(), name.size() - prefix.size() - extension.size());
+        if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+            digits.size() > 9)
+            continue;
+        const pid_t pid = static_cast<pid_t>(std::stol(digits));
+        if (pid != getpid() && kill(pid, 0) != 0 && errno == ESRCH) {
+            std::error_code removeError;
+            fs::remove(it->path(), removeError);
+        }
+    }
+}
+
 AtomicOutput::AtomicOutput(std::string path) : final_(std::move(path)) {
     checkOutputPath(final_);
     fs::path p(final_);
     fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    removeStalePartials(dir, p);
     std::string name = ".";
     name += p.stem().string();
     name += ".partial-";

@@ -2,7 +2,8 @@
 /// Writes an output file without ever leaving a damaged one behind: the writer fills a
 /// temporary file in the same folder (same extension, so format-sniffing writers still work),
 /// and commit() renames it over the final name. If commit() is never reached (an error, an
-/// exception), the destructor removes the temporary file.
+/// exception), the destructor removes the temporary file; one left by a process that was killed
+/// while writing is removed by the next AtomicOutput of the same name.
 
 #include <string>
 #include <utility>

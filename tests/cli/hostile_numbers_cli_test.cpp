@@ -39,4 +39,18 @@ TEST_F(HostileNumbersCliTest, NanOptionsAreRefusedByTheParser) {
     expectFailure(r, {"--azimuth", "finite"});
 }
 
+TEST_F(HostileNumbersCliTest, CompareRefusesImagesWithNan) {
+    // Once: RMSE nan and exit 0, so a broken render passed a regression check.
+    const fs::path image = in_ / "nan.exr";
+    std::vector<float> pixels = {0.5f, 0.5f, 0.5f, 0.5f, std::nanf(""), 0.5f,
+                                 0.5f, 0.5f, 0.5f, 0.5f, 0.5f,          0.5f};
+    auto out = OIIO::ImageOutput::create(image.string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(image.string(), OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+    expectInputError(run({"compare", image.string(), image.string(), "--max-rmse", "1"}),
+                     {"nan.exr", "pixel (1, 0)", "channel G is nan"});
+}
+
 }  // namespace

@@ -50,4 +50,19 @@ TEST_F(OutputsCliTest, TargetsThatAreNotRegularFilesAreNeverReplaced) {
     if (cases.size() == 3) EXPECT_TRUE(fs::is_character_file(fs::symlink_status(device)));
 }
 
+TEST_F(OutputsCliTest, PartialFilesOfKilledRunsAreCleanedUp) {
+    // A run killed while writing leaves its temporary file; the next run of that output removes
+    // it (its process is gone) but never the temporary file of a process still running.
+    const fs::path stale = out_ / ".a.partial-999999999.exr";
+    const fs::path live = out_ / fmt::format(".a.partial-{}.exr", getpid());
+    std::ofstream(stale) << "half";
+    std::ofstream(live) << "in progress";
+    RunResult r = run({"render", kScene.string(), "-q", "--res", "16x16", "--spp", "1", "-o",
+                       (out_ / "a.exr").string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(fs::exists(stale));
+    EXPECT_TRUE(fs::exists(live));
+    EXPECT_TRUE(fs::exists(out_ / "a.exr"));
+}
+
 }  // namespace
