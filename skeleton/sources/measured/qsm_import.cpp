@@ -48,6 +48,11 @@ const std::map<std::string, Column>& headerNames() {
                                                         {"cylid", Id},
                                                         {"radius", Radius},
                                                         {"rad", Radius},
+                                                        {"radiusm", Radius},
+                                                        {"radiuscyl", Radius},
+                                                        {"cylradius", Radius},
+                                                        {"cylinderradius", Radius},
+                                                        {"r", Radius},
                                                         {"length", Length},
                                                         {"len", Length},
                                                         {"startx", SX},
@@ -223,11 +228,13 @@ private:
         return v;
     }
 
+    /// A cylinder or branch number: a whole number >= 0, or -1 for "none" (exports with
+    /// 0-based numbers mark the stem base's parent and a missing extension so).
     long long integer(const std::vector<std::string>& cells, Column c, size_t line) const {
         double v = number(cells, c, line);
-        if (v != std::floor(v) || v < 0)
+        if (v != std::floor(v) || v < -1 || v > 1e15)
             throw lineError(line, fmt::format("column {}: expected a cylinder/branch number "
-                                              ">= 0, found {}",
+                                              "(a whole number >= 0, or -1 for none), found {:g}",
                                               column_[c] + 1, v));
         return static_cast<long long>(v);
     }
@@ -237,6 +244,7 @@ private:
         cyl.line = line;
         cyl.id = column_[Id] >= 0 ? integer(cells, Id, line)
                                   : static_cast<long long>(cylinders_.size() + 1);
+        if (cyl.id < 0) throw lineError(line, "cylinder number -1: expected a number >= 0");
         cyl.radius = number(cells, Radius, line);
         if (!(cyl.radius > 0))
             throw lineError(line, fmt::format("radius {} m: expected > 0", cyl.radius));
@@ -268,7 +276,8 @@ private:
         std::optional<size_t> root;
         for (size_t i = 0; i < cylinders_.size(); ++i) {
             const Cylinder& c = cylinders_[i];
-            if (c.parent == 0) {
+            // No parent: -1, or 0 where the numbers start at 1 (TreeQSM).
+            if (c.parent < 0 || (c.parent == 0 && !index_.count(0))) {
                 if (root)
                     throw lineError(c.line, fmt::format("a second cylinder without parent (the "
                                                         "first is on line {}): expected one "

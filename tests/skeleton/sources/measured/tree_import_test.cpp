@@ -156,6 +156,31 @@ TEST(QsmImport, HeaderCsvWithEndPointsAndDerivedBranchesGivesTheSameTree) {
         EXPECT_EQ(t.skeleton.segment(i).parent, ref.skeleton.segment(i).parent);
 }
 
+TEST(QsmImport, ZeroBasedExportsWithOtherColumnNamesImport) {
+    // Exports of other tools (SimpleForest, R packages converting QSMs) number cylinders from
+    // 0, give the stem base parent -1 (and "no extension" -1) and call the radius radius_cyl:
+    // once refused.
+    QsmTree ref = parseQsm(kQsm, "tree.txt");
+    std::string csv =
+        "ID,parentID,extension,radius_cyl,start_x,start_y,start_z,end_x,end_y,end_z\n";
+    std::istringstream in(kQsm);
+    std::string line;
+    int id = 0;
+    while (std::getline(in, line)) {
+        double v[15];
+        std::istringstream cells(line);
+        for (double& x : v) cells >> x;
+        Vec3 s{v[2], v[3], v[4]}, e = s + normalize(Vec3{v[5], v[6], v[7]}) * v[1];
+        csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", id++, v[8] - 1, v[9] - 1, v[0], s.x,
+                           s.y, s.z, e.x, e.y, e.z);
+    }
+    QsmTree t = parseQsm(csv, "zero-based.csv");
+    ASSERT_EQ(t.skeleton.segments().size(), ref.skeleton.segments().size());
+    for (size_t i = 0; i < t.skeleton.segments().size(); ++i)
+        EXPECT_EQ(t.skeleton.segment(i).parent, ref.skeleton.segment(i).parent);
+    EXPECT_DOUBLE_EQ(t.skeleton.node(0).radius, 0.20);
+}
+
 std::string qsmError(const std::string& text) {
     try {
         parseQsm(text, "bad.txt");
@@ -179,6 +204,9 @@ TEST(QsmImport, BadFilesSayWhereAndWhat) {
               std::string::npos);
     EXPECT_NE(qsmError("radius,length\n1,2\n").find("start x/y/z"), std::string::npos);
     EXPECT_NE(qsmError("").find("empty"), std::string::npos);
+    // A parent number too large for any file: said as it was written, not as a wrapped integer.
+    EXPECT_NE(qsmError("0.2\t1\t0\t0\t0\t0\t0\t1\t1e30\t0\t1\n").find("found 1e+30"),
+              std::string::npos);
     // A branch that forks into two cylinders of the same branch id.
     EXPECT_NE(qsmError("0.2\t1\t0\t0\t0\t0\t0\t1\t0\t0\t1\n"
                        "0.1\t1\t0\t0\t1\t0\t0\t1\t1\t0\t1\n"
