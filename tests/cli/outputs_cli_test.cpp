@@ -47,7 +47,9 @@ TEST_F(OutputsCliTest, TargetsThatAreNotRegularFilesAreNeverReplaced) {
     EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
     EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
     EXPECT_EQ(readText(target), "keep");
-    if (cases.size() == 3) EXPECT_TRUE(fs::is_character_file(fs::symlink_status(device)));
+    if (cases.size() == 3) {
+        EXPECT_TRUE(fs::is_character_file(fs::symlink_status(device)));
+    }
 }
 
 TEST_F(OutputsCliTest, PartialFilesOfKilledRunsAreCleanedUp) {
