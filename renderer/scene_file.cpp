@@ -4,7 +4,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <map>
 
 #include "grain/grain_params.h"
@@ -17,8 +16,6 @@ namespace nenrin {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 // Caps that catch typos (an extra zero) before they cost hours or all memory.
 constexpr int kMaxSide = 16384;
 constexpr long long kMaxPixels = 1LL << 26;
@@ -27,10 +24,7 @@ constexpr int kMaxLamellae = 100000;
 
 /// A path in the scene file, relative to it; recorded as one of the scene's inputs.
 std::string resolve(Scene& scene, const std::string& relative) {
-    fs::path p(relative);
-    std::string path = p.is_absolute()
-                           ? relative
-                           : (fs::path(scene.file).parent_path() / p).lexically_normal().string();
+    std::string path = pathRelativeTo(scene.file, relative);
     scene.inputFiles.push_back(path);
     return path;
 }

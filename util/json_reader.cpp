@@ -53,21 +53,61 @@ struct ErrorLocator : nlohmann::json_sax<nlohmann::json> {
 
 /// What a strict reader refuses that nlohmann's parser accepts: a key twice in one object (the
 /// last would silently win, hiding a bad value), and nesting deeper than kMaxJsonDepth (deep
-/// documents overflow the stack of recursive readers). A SAX pass before the real parse, which
-/// keeps the JSON path for the message.
-struct StrictnessCheck : nlohmann::json_sax<nlohmann::json> {
+/// documents overflow the stack of recursive readers). Checked by the parser's callback during
+/// the one parse, keeping the JSON path for the message.
+class StrictnessCheck {
+public:
+    explicit StrictnessCheck(std::string name) : name_(std::move(name)) {}
+
+    bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+        using Event = nlohmann::json::parse_event_t;
+        switch (event) {
+            case Event::object_start:
+            case Event::array_start:
+                if (levels_.size() >= kMaxJsonDepth) {
+                    std::string where = path();
+                    if (where.size() > 100) where = "..." + where.substr(where.size() - 100);
+                    throw InputError(name_, where,
+                                     fmt::format("nested more than {} levels deep", kMaxJsonDepth));
+                }
+                levels_.push_back({event == Event::object_start, {}, "", 0});
+                break;
+            case Event::key: {
+                Level& l = levels_.back();
+                l.key = parsed.get<std::string>();
+                if (!l.keys.insert(l.key).second)
+                    throw InputError(name_, path(),
+                                     fmt::format("\"{}\" a second time in this object (the last "
+                                                 "would silently win)",
+                                                 l.key));
+                break;
+            }
+            case Event::object_end:
+            case Event::array_end:
+                levels_.pop_back();
+                countValue();
+                break;
+            case Event::value:
+                countValue();
+                break;
+        }
+        return true;
+    }
+
+private:
     struct Level {
         bool object;
         std::set<std::string> keys;
         std::string key;
         size_t index = 0;
     };
-    std::vector<Level> levels;
-    std::string problem, where;
 
+    void countValue() {
+        if (!levels_.empty() && !levels_.back().object) ++levels_.back().index;
+    }
     std::string path() const {
         std::string p;
-        for (const Level& l : levels) {
+        for (const Level& l : levels_) {
             if (l.object) {
                 if (!l.key.empty()) p += (p.empty() ? "" : ".") + l.key;
             } else {
@@ -76,61 +116,16 @@ struct StrictnessCheck : nlohmann::json_sax<nlohmann::json> {
         }
         return p.empty() ? "(top level)" : p;
     }
-    bool value() {
-        if (!levels.empty() && !levels.back().object) ++levels.back().index;
-        return true;
-    }
-    bool open(bool object) {
-        if (levels.size() >= kMaxJsonDepth) {
-            where = path();
-            if (where.size() > 100) where = "..." + where.substr(where.size() - 100);
-            problem = fmt::format("nested more than {} levels deep", kMaxJsonDepth);
-            return false;
-        }
-        levels.push_back({object, {}, "", 0});
-        return true;
-    }
-    bool close() {
-        levels.pop_back();
-        return value();
-    }
-    bool null() override { return value(); }
-    bool boolean(bool) override { return value(); }
-    bool number_integer(number_integer_t) override { return value(); }
-    bool number_unsigned(number_unsigned_t) override { return value(); }
-    bool number_float(number_float_t, const string_t&) override { return value(); }
-    bool string(string_t&) override { return value(); }
-    bool binary(binary_t&) override { return value(); }
-    bool start_object(std::size_t) override { return open(true); }
-    bool key(string_t& k) override {
-        Level& l = levels.back();
-        l.key = k;
-        if (!l.keys.insert(k).second) {
-            where = path();
-            problem = fmt::format(
-                "\"{}\" a second time in this object (the last would "
-                "silently win)",
-                k);
-            return false;
-        }
-        return true;
-    }
-    bool end_object() override { return close(); }
-    bool start_array(std::size_t) override { return open(false); }
-    bool end_array() override { return close(); }
-    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
-        return false;  // syntax errors are reported by the real parse
-    }
+
+    std::string name_;
+    std::vector<Level> levels_;
 };
 
 nlohmann::json parseJsonText(const std::string& text, const std::string& name) {
     if (size_t nul = text.find('\0'); nul != std::string::npos)
         throw InputError(name, lineColumn(text, nul), "a NUL byte: expected JSON text");
-    StrictnessCheck check;
-    nlohmann::json::sax_parse(text, &check);
-    if (!check.problem.empty()) throw InputError(name, check.where, check.problem);
     try {
-        return nlohmann::json::parse(text);
+        return nlohmann::json::parse(text, StrictnessCheck(name));
     } catch (const nlohmann::json::out_of_range& e) {
         ErrorLocator locator;
         nlohmann::json::sax_parse(text, &locator);
@@ -154,6 +149,12 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& name) {
         if (end >= text.size()) detail = "unexpected end of file (truncated JSON?): " + detail;
         throw InputError(name, lineColumn(text, end), "invalid JSON: " + detail);
     }
+}
+
+std::string pathRelativeTo(const std::string& file, const std::string& path) {
+    const std::filesystem::path p(path);
+    if (p.is_absolute()) return path;
+    return (std::filesystem::path(file).parent_path() / p).lexically_normal().string();
 }
 
 nlohmann::json parseJsonFile(const std::string& path) {

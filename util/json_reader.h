@@ -26,6 +26,9 @@ inline constexpr uintmax_t kMaxJsonFileBytes = uintmax_t(256) << 20;
 /// The largest magnitude of any real number in a nenrin JSON file.
 inline constexpr double kMaxJsonMagnitude = 1e9;
 
+/// A path written in the JSON file `file`: absolute as it is, else relative to the file's folder.
+std::string pathRelativeTo(const std::string& file, const std::string& path);
+
 /// Reads and parses a JSON file. Missing files and syntax errors (with line and column) throw
 /// InputError.
 nlohmann::json parseJsonFile(const std::string& path);

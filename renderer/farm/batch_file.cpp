@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <set>
 
 #include "util/json_reader.h"
@@ -11,15 +10,7 @@ namespace nenrin {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 constexpr size_t kMaxFrames = 100000;
-
-std::string resolve(const std::string& batchFile, const std::string& relative) {
-    fs::path p(relative);
-    if (p.is_absolute()) return relative;
-    return (fs::path(batchFile).parent_path() / p).lexically_normal().string();
-}
 
 /// {"/pointer": value, ...} as "POINTER=JSON" strings.
 void addSets(JsonReader& r, std::vector<std::string>& sets) {
@@ -133,8 +124,8 @@ std::vector<BatchFrame> loadBatchFile(const std::string& path) {
             if (!names.insert(frame.name).second)
                 throw InputError(path, "frames",
                                  fmt::format("two frames named \"{}\"", frame.name));
-            frame.scene = resolve(path, frame.scene);
-            frame.output = resolve(path, substitute(output, frame.name));
+            frame.scene = pathRelativeTo(path, frame.scene);
+            frame.output = pathRelativeTo(path, substitute(output, frame.name));
             if (png) {
                 frame.png = frame.output;
                 frame.png.replace(frame.png.size() - 4, 4, ".png");

@@ -133,22 +133,32 @@ TEST(QsmImport, KeepsTheParentStructure) {
     EXPECT_EQ(back.segments().size(), sk.segments().size());
 }
 
-TEST(QsmImport, HeaderCsvWithEndPointsAndDerivedBranchesGivesTheSameTree) {
-    QsmTree ref = parseQsm(kQsm, "tree.txt");
-    // Same cylinders as CSV with end points and no branch column.
-    std::string csv = "ID,parent,extension,radius,start_x,start_y,start_z,end_x,end_y,end_z\n";
+/// kQsm as a CSV with a header, end points and no branch column, cylinders numbered from
+/// `firstId`: from 1 as TreeQSM (no parent = 0), or from 0 as other tools export (no parent,
+/// no extension = -1, the radius column called radius_cyl).
+std::string qsmAsCsv(int firstId) {
+    std::string csv =
+        fmt::format("ID,parent,extension,{},start_x,start_y,start_z,end_x,end_y,end_z\n",
+                    firstId == 0 ? "radius_cyl" : "radius");
     std::istringstream in(kQsm);
     std::string line;
-    int id = 0;
+    int id = firstId;
     while (std::getline(in, line)) {
         double v[15];
         std::istringstream cells(line);
         for (double& x : v) cells >> x;
         Vec3 s{v[2], v[3], v[4]}, e = s + normalize(Vec3{v[5], v[6], v[7]}) * v[1];
-        csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", ++id, v[8], v[9], v[0], s.x, s.y, s.z,
-                           e.x, e.y, e.z);
+        const double shift = 1 - firstId;  // TreeQSM numbers are 1-based
+        csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", id++, v[8] - shift, v[9] - shift,
+                           v[0], s.x, s.y, s.z, e.x, e.y, e.z);
     }
-    QsmTree t = parseQsm(csv, "tree.csv");
+    return csv;
+}
+
+TEST(QsmImport, HeaderCsvWithEndPointsAndDerivedBranchesGivesTheSameTree) {
+    QsmTree ref = parseQsm(kQsm, "tree.txt");
+    // Same cylinders as CSV with end points and no branch column.
+    QsmTree t = parseQsm(qsmAsCsv(1), "tree.csv");
     ASSERT_EQ(t.skeleton.segments().size(), ref.skeleton.segments().size());
     for (size_t i = 0; i < t.skeleton.nodes().size(); ++i)
         EXPECT_NEAR(length(t.skeleton.node(i).position - ref.skeleton.node(i).position), 0, 1e-12);
@@ -161,20 +171,7 @@ TEST(QsmImport, ZeroBasedExportsWithOtherColumnNamesImport) {
     // 0, give the stem base parent -1 (and "no extension" -1) and call the radius radius_cyl:
     // once refused.
     QsmTree ref = parseQsm(kQsm, "tree.txt");
-    std::string csv =
-        "ID,parentID,extension,radius_cyl,start_x,start_y,start_z,end_x,end_y,end_z\n";
-    std::istringstream in(kQsm);
-    std::string line;
-    int id = 0;
-    while (std::getline(in, line)) {
-        double v[15];
-        std::istringstream cells(line);
-        for (double& x : v) cells >> x;
-        Vec3 s{v[2], v[3], v[4]}, e = s + normalize(Vec3{v[5], v[6], v[7]}) * v[1];
-        csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", id++, v[8] - 1, v[9] - 1, v[0], s.x,
-                           s.y, s.z, e.x, e.y, e.z);
-    }
-    QsmTree t = parseQsm(csv, "zero-based.csv");
+    QsmTree t = parseQsm(qsmAsCsv(0), "zero-based.csv");
     ASSERT_EQ(t.skeleton.segments().size(), ref.skeleton.segments().size());
     for (size_t i = 0; i < t.skeleton.segments().size(); ++i)
         EXPECT_EQ(t.skeleton.segment(i).parent, ref.skeleton.segment(i).parent);
