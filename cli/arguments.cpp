@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "util/input_error.h"
+#include "util/memory_budget.h"
 
 namespace nenrin {
 
@@ -21,6 +22,25 @@ CLI::Validator finiteRange(double lo, double hi) {
             return "";
         },
         fmt::format("FINITE in [{:g}, {:g}]", lo, hi));
+}
+
+void addMaxMemoryOption(CLI::App* command) {
+    command
+        ->add_option_function<std::string>(
+            "--max-memory", [](const std::string& text) { setMemoryLimit(parseByteSize(text)); },
+            fmt::format("Most memory the job may take, e.g. 8G or 512M; a larger job is refused "
+                        "before it starts (default: 80 % of this machine's {})",
+                        formatBytes(double(availableMemoryBytes()))))
+        ->type_name("SIZE")
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                return parseByteSize(text) ? ""
+                                           : fmt::format(
+                                                 "expected a size such as 8G, 512M or "
+                                                 "2.5GiB, found \"{}\"",
+                                                 text.substr(0, 40));
+            },
+            "SIZE"));
 }
 
 namespace {

@@ -13,6 +13,10 @@ namespace nenrin {
 /// [lo, hi], with a short message ("expected a finite number in [-10000, 10000], found 1e+308").
 CLI::Validator finiteRange(double lo, double hi);
 
+/// --max-memory SIZE ("8G", "512M"): the most memory the command's grids and frames may take
+/// (util/memory_budget.h); by default 80 % of the machine's.
+void addMaxMemoryOption(CLI::App* command);
+
 /// Where nenrin works in tree or scene space (m): no tree and no product is 10 km away.
 inline constexpr double kMaxCoordinate = 1e4;
 

@@ -51,6 +51,7 @@ void addCommon(CLI::App* cmd, CommonOptions& o) {
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
     cmd->add_flag("-q,--quiet", o.quiet, "No progress bar");
+    addMaxMemoryOption(cmd);
     cmd->add_option("--tile", o.tile,
                     "K/N: bake only part K of N (a band of whole bake tiles) into an EXR part "
                     "file, for a cluster; `nenrin merge` puts the parts together, byte-identical "

@@ -123,6 +123,7 @@ void addPovCommands(CLI::App& app) {
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
     pov->add_flag("-q,--quiet", p->quiet, "No progress output");
+    addMaxMemoryOption(pov);
     pov->callback([p] {
         auto scene = loadScene(p->scene);
         PovExportOptions options;

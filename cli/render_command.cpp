@@ -152,6 +152,7 @@ void addRenderCommand(CLI::App& app) {
         ->check(CLI::Range(0LL, 1LL << 53));
     cmd->add_option("--png", o->png, "Also write an 8-bit sRGB preview through OpenColorIO");
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
+    addMaxMemoryOption(cmd);
     cmd->add_option("--tile", o->tile,
                     "K/N: render only part K of N (a band of whole 16-pixel tile rows) into a "
                     "part EXR, for a cluster; `nenrin merge` puts the parts together, "

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "arguments.h"
 #include "render_command.h"
 #include "renderer/farm/batch_file.h"
 #include "renderer/farm/part_merge.h"
@@ -32,6 +33,7 @@ void addMergeCommand(CLI::App& app) {
                     "Output: .exr (render, slice, volume), .vdb or .df3 (volume)")
         ->required();
     cmd->add_option("--png", o->png, "Also write an 8-bit sRGB preview (render, slice)");
+    addMaxMemoryOption(cmd);
     cmd->callback([o] {
         auto t0 = std::chrono::steady_clock::now();
         checkMergeOutputs(o->output, o->png);
@@ -68,6 +70,7 @@ void addBatchCommand(CLI::App& app) {
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
+    addMaxMemoryOption(cmd);
     cmd->callback([o] {
         const std::vector<BatchFrame> frames = loadBatchFile(o->file);
         if (o->list) {

@@ -62,7 +62,7 @@ void addCommon(CLI::App* cmd, CommonTreeOptions& o, const std::string& presets,
     cmd->add_option("--seed", o.seed, "Random seed (same seed, same tree)")
         ->check(CLI::Range(0LL, kMaxSeed))
         ->default_val(1);
-    cmd->add_option("--years", o.years, yearsHelp)->check(CLI::Range(1, 1000));
+    cmd->add_option("--years", o.years, yearsHelp)->check(CLI::Range(1, 500));  // as the models
     cmd->add_option("-o,--output", o.output, "Output skeleton file (.json)")->required();
 }
 
@@ -175,7 +175,7 @@ void addTreeModelCommands(CLI::App& tree) {
                   "JSON options file instead of a preset (docs/tree-kanayama.md)");
     k->add_option("--remove-leader-at", *removeLeader,
                   "Cut the main stem at the start of this year (dormant buds break)")
-        ->check(CLI::Range(0, 1000));
+        ->check(CLI::Range(0, 500));
     k->add_flag("-q,--quiet", kanayama->quiet, "No progress bar");
     k->callback([kanayama, removeLeader] { runKanayama(*kanayama, *removeLeader); });
 }
@@ -213,11 +213,19 @@ void runStand(const StandCliOptions& o) {
         "species (g < 0.5) {:.2f}; {:.2f} s\n",
         o.preset, s.years, stand.trees.size(), alive, c.tolerantShare(), since(t0));
     saveStandFile(stand, o.output);
+    // A young stand has no tree old enough to call suppressed: said, not an error (the stand
+    // is fine; `stand fell --tree suppressed` explains the same).
+    auto pick = [&](TreePick which) {
+        try {
+            return std::to_string(pickStandTree(stand, which));
+        } catch (const InputError&) {
+            return std::string("none yet");
+        }
+    };
     fmt::print(
-        "wrote {}\ndominant tree: {}, most suppressed living tree: {} (nenrin stand fell "
-        "{} --tree ID -o tree.json)\n",
-        o.output, pickStandTree(stand, TreePick::Dominant),
-        pickStandTree(stand, TreePick::Suppressed), o.output);
+        "wrote {}\ndominant tree: {}, most suppressed living tree (>= 20 years old): {} (nenrin "
+        "stand fell {} --tree ID -o tree.json)\n",
+        o.output, pick(TreePick::Dominant), pick(TreePick::Suppressed), o.output);
 }
 
 void runFell(const std::string& input, const std::string& which, const std::string& output) {

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 
+#include "arguments.h"
 #include "renderer/bake/uv_bake.h"
 #include "renderer/scene_file.h"
 #include "util/input_error.h"
@@ -97,6 +98,7 @@ void addUvBakeCommand(CLI::App* bake) {
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
+    addMaxMemoryOption(cmd);
     cmd->callback([o] { run(*o); });
 }
 

@@ -1,7 +1,7 @@
 cmake_minimum_required(VERSION 3.20)
 # Fails if a library's source includes a header of a library above it or beside it: the
 # dependency order of README.md's layout table, written out here as what each library may
-# include (besides its own headers). tests/ and bench/ may include anything.
+# include (besides its own headers). tests/, bench/ and fuzz/ may include anything.
 set(sources_of_library
     "util:"
     "skeleton:util"

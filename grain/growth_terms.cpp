@@ -105,9 +105,12 @@ double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elon
 
 double microStructure(const Vec3& p, double cellSize, uint64_t seed) {
     constexpr int kSize = 16;
+    // The cell index modulo kSize, taken in doubles: a far point (1e30 m in a host's scene)
+    // has no integer cell index.
     auto cell = [&](double c) {
-        long long i = static_cast<long long>(std::floor(c / cellSize));
-        return static_cast<uint64_t>(((i % kSize) + kSize) % kSize);
+        double i = std::fmod(std::floor(c / cellSize), kSize);
+        if (!std::isfinite(i)) return uint64_t{0};
+        return static_cast<uint64_t>(i < 0 ? i + kSize : i);
     };
     uint64_t ix = cell(p.x), iy = cell(p.y);
     return 2 * uniform01(seed, ix * kSize + iy) - 1;

@@ -10,9 +10,12 @@ LatewoodTiming::LatewoodTiming(std::vector<double> shares, double profileShare)
     for (double& s : shares_) s = std::clamp(s, 0.01, 0.99);
 }
 
-double LatewoodTiming::share(int year) const {
+double LatewoodTiming::share(double year) const {
     if (shares_.empty()) return profileShare_;
-    return shares_[size_t(std::clamp(year, 0, int(shares_.size()) - 1))];
+    // Clamped as a double: the T of a far point is no int.
+    if (!(year > 0)) return shares_.front();
+    if (year >= double(shares_.size() - 1)) return shares_.back();
+    return shares_[size_t(year)];
 }
 
 double LatewoodTiming::profileTime(double T, double* slope) const {
@@ -21,7 +24,7 @@ double LatewoodTiming::profileTime(double T, double* slope) const {
         return T;
     }
     const double k = std::floor(T), u = T - k;
-    const double a = 1 - share(int(k)), A = 1 - profileShare_;
+    const double a = 1 - share(k), A = 1 - profileShare_;
     double v, d;
     if (u < a) {
         d = A / a;

@@ -19,7 +19,7 @@ public:
     bool empty() const { return shares_.empty(); }
     /// T' for growth time T; `slope` (if given) receives dT'/dT there.
     double profileTime(double T, double* slope = nullptr) const;
-    double share(int year) const;
+    double share(double year) const;
 
 private:
     std::vector<double> shares_;

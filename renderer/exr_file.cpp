@@ -16,6 +16,7 @@
 #include <exception>
 #include <fstream>
 
+#include "renderer/finite_output.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -24,6 +25,8 @@ void writeFloatExr(const std::string& finalPath, const std::string& writePath, i
                    int height, const std::vector<std::string>& channels, const float* pixels,
                    const std::map<std::string, std::string>& metadata, RowBand band) {
     const int end = band.end < 0 ? height : band.end;
+    requireFiniteOutput(pixels, size_t(end - band.begin) * width * channels.size(), channels, width,
+                        band.begin, finalPath);
     const Imath::Box2i display({0, 0}, {width - 1, height - 1});
     const Imath::Box2i data({0, band.begin}, {width - 1, end - 1});
     // zip at level 1: nearly the size of the default level, at a fraction of the time.

@@ -2,14 +2,20 @@
 
 #include <pmmintrin.h>
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <xmmintrin.h>
 
+#include <algorithm>
+
 namespace nenrin {
 
 void parallelTiles(size_t tileCount, int threads, const std::function<void(size_t)>& body) {
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    // More threads than cores cannot run (TBB would print a warning through -q): at most the
+    // cores. The result does not depend on the count.
+    const int cores = tbb::info::default_concurrency();
+    tbb::task_arena arena(threads > 0 ? std::min(threads, cores) : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, tileCount, 1),
                           [&](const tbb::blocked_range<size_t>& r) {

@@ -1,5 +1,6 @@
 #include "renderer/path_tracer.h"
 
+#include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include "renderer/ray_scene.h"
 #include "shader/surface_bsdf.h"
 #include "util/hash.h"
+#include "util/memory_budget.h"
 #include "util/progress.h"
 #include "util/scrambled_sobol.h"
 
@@ -896,6 +898,10 @@ Film renderScene(const Scene& scene, const RenderOptions& options, RenderStats& 
         rowEnd <= options.rows.begin || rowEnd > settings.height ||
         (rowEnd % kTileSize != 0 && rowEnd != settings.height))
         throw std::invalid_argument("renderScene: rows not a band of whole tile rows");
+    // Film channels, the per-pixel sampling state and the EXR writer's copy: ~160 bytes a pixel.
+    requireMemory(160.0 * settings.width * (rowEnd - options.rows.begin),
+                  fmt::format("a {}x{} frame", settings.width, rowEnd - options.rows.begin),
+                  scene.file);
     Film film;
     film.resize(settings.width, settings.height, options.rows.begin, rowEnd - options.rows.begin);
     if (settings.noiseThreshold > 0) film.samples.assign(film.alpha.size(), 0);

@@ -345,6 +345,13 @@ SceneObject readObject(JsonReader& r, Scene& scene,
             minPiece = f->positive("min_length", 0.9);
             maxPiece = f->positive("max_length", 2.4);
             if (maxPiece < minPiece) throw f->error("max_length", "must be >= min_length");
+            // Checked before the layout is drawn: 1e-6 m pieces once grew to 24 GB.
+            double boards = count * std::ceil(length / minPiece);
+            if (boards > kMaxLamellae)
+                throw f->error("min_length",
+                               fmt::format("{} m pieces of {} lamellae {} m long could make {:.3g} "
+                                           "boards: expected at most {}",
+                                           minPiece, count, length, boards, kMaxLamellae));
             fingers.length = f->nonNegative("finger_length", fingers.length);
             fingers.pitch = f->positive("pitch", fingers.pitch);
             f->finish();

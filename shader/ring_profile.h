@@ -13,7 +13,12 @@ namespace nenrin {
 class RingProfile {
 public:
     /// `exponent` is n of eq. 6 (late_wood_exponent); larger = narrower late-wood band.
-    explicit RingProfile(double exponent) : RingProfile(LateWoodShape{exponent}) {}
+    explicit RingProfile(double exponent)
+        : RingProfile([exponent] {
+              LateWoodShape shape;
+              shape.exponent = exponent;
+              return shape;
+          }()) {}
     /// Any transition shape (eq. 6, or an abrupt step into a late-wood band).
     explicit RingProfile(const LateWoodShape& shape);
 

@@ -243,7 +243,7 @@ public:
             }
             s.footprints.resize(footprints ? n : 0);
             for (size_t i = 0; i < s.footprints.size(); ++i)
-                s.footprints[i] = {{}, {}, footprints[begin + i]};
+                s.footprints[i] = {{}, {}, footprints[begin + i], {}};
             s.samples.resize(n);
             shader_->evaluateSurface(s.points, s.footprints, s.samples, s.wood);
             for (size_t i = 0; i < n; ++i) convert(s.samples[i], out[begin + i]);

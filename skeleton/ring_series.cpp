@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "util/input_error.h"
+#include "util/input_file.h"
 
 namespace nenrin {
 
@@ -76,19 +77,7 @@ const RingSeries& RingSeriesFile::find(const std::string& id) const {
 }
 
 RingSeriesFile readTucsonRwl(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot open the ring-width file");
-    std::string text;
-    char buffer[1 << 16];
-    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-        text.append(buffer, static_cast<size_t>(in.gcount()));
-        if (text.size() > kMaxFileBytes)
-            throw InputError(path, "",
-                             fmt::format("larger than {} MiB: expected a Tucson .rwl text file",
-                                         kMaxFileBytes >> 20));
-    }
-    if (in.bad()) throw InputError(path, "", "cannot read the ring-width file");
-    return parseTucsonRwl(text, path);
+    return parseTucsonRwl(readInputFile(path, kMaxFileBytes, "a Tucson .rwl text file"), path);
 }
 
 RingSeriesFile parseTucsonRwl(const std::string& text, const std::string& path) {

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <vector>
 
+#include "util/input_file.h"
+
 namespace nenrin {
 
 namespace {
@@ -158,24 +160,7 @@ std::string pathRelativeTo(const std::string& file, const std::string& path) {
 }
 
 nlohmann::json parseJsonFile(const std::string& path) {
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (std::filesystem::is_directory(status))
-        throw InputError(path, "", "this is a folder: expected a JSON file");
-    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-        throw InputError(path, "",
-                         "not a regular file (a device or a FIFO?): expected a JSON file");
-    if (std::filesystem::is_regular_file(status) &&
-        std::filesystem::file_size(path, ec) > kMaxJsonFileBytes)
-        throw InputError(
-            path, "",
-            fmt::format("{} MB: over the {} MB nenrin reads as JSON",
-                        std::filesystem::file_size(path, ec) >> 20, kMaxJsonFileBytes >> 20));
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot open file for reading (does it exist?)");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return parseJsonText(ss.str(), path);
+    return parseJsonText(readInputFile(path, kMaxJsonFileBytes, "a JSON file"), path);
 }
 
 const char* jsonTypeName(const nlohmann::json& v) {

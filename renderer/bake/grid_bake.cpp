@@ -1,10 +1,13 @@
 #include "renderer/bake/grid_bake.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <stdexcept>
 
 #include "renderer/parallel_tiles.h"
+#include "util/memory_budget.h"
 #include "util/progress.h"
 
 namespace nenrin {
@@ -19,7 +22,17 @@ constexpr int kTile3D = 8, kChunk3D = 4;
 
 int bakeTileLayers(bool volume) { return volume ? kTile3D : kTile2D; }
 
+double bakeMemoryBytes(const BakedGrid& grid) {
+    // The samples and a writer's copy of them (EXR channels, VDB grids).
+    return 2.0 * double(grid.sampleCount()) * BakedGrid::kChannels * sizeof(float);
+}
+
 void bakeGrid(const WoodShader& shader, BakedGrid& grid, const BakeOptions& options) {
+    requireMemory(bakeMemoryBytes(grid),
+                  grid.isVolume()
+                      ? fmt::format("a {} x {} x {} volume", grid.width, grid.height, grid.depth)
+                      : fmt::format("a {} x {} slice", grid.width, grid.height),
+                  "bake");
     grid.data.assign(grid.sampleCount() * BakedGrid::kChannels, 0.f);
     const bool volume = grid.isVolume();
     if (grid.layerBegin % bakeTileLayers(volume) != 0)

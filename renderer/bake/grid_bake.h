@@ -19,8 +19,12 @@ struct BakeOptions {
 /// start on multiples of it, so every sample is computed in the same batch as in a whole bake.
 int bakeTileLayers(bool volume);
 
+/// Memory a bake of this grid takes (its samples and a writer's copy), bytes.
+double bakeMemoryBytes(const BakedGrid& grid);
+
 /// Fills grid.data (resizing it) for the layers the grid holds (grid.layerBegin must be a
-/// multiple of bakeTileLayers). Bitwise identical for any thread count and split.
+/// multiple of bakeTileLayers). Bitwise identical for any thread count and split. A grid over
+/// the memory limit (util/memory_budget.h) is refused with an InputError before allocating.
 void bakeGrid(const WoodShader& shader, BakedGrid& grid, const BakeOptions& options);
 
 }  // namespace nenrin

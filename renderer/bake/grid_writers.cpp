@@ -12,6 +12,7 @@
 #include "renderer/bake/vdb_writer_abi.h"
 #include "renderer/colour_management.h"
 #include "renderer/exr_file.h"
+#include "renderer/finite_output.h"
 #include "util/atomic_output.h"
 #include "util/content_hash.h"
 #include "util/input_error.h"
@@ -71,10 +72,17 @@ void stampContentUuid(const BakedGrid& grid, const std::string& file, const std:
     if (!f) throw InputError(path, "", "cannot write the VDB (disk full?)");
 }
 
+void requireFinite(const BakedGrid& grid, const std::string& path) {
+    requireFiniteOutput(grid.data.data(), grid.data.size(),
+                        std::vector<std::string>(kBakeChannels.begin(), kBakeChannels.end()),
+                        grid.width, 0, path);
+}
+
 }  // namespace
 
 std::vector<std::string> writeVdb(const BakedGrid& grid, const std::string& path) {
     if (!grid.whole()) throw std::invalid_argument("writeVdb: a band of a grid");
+    requireFinite(grid, path);
     const auto write = reinterpret_cast<NenrinVdbWriteFn>(
         moduleSymbol("libnenrin_vdb_writer.so", NENRIN_VDB_MODULE, "nenrin_vdb_write", path));
     AtomicOutput out(path);
@@ -110,6 +118,7 @@ std::vector<std::string> writeVdb(const BakedGrid& grid, const std::string& path
 
 std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path) {
     if (!grid.whole()) throw std::invalid_argument("writeDf3: a band of a grid");
+    requireFinite(grid, path);
     if (grid.width > 65535 || grid.height > 65535 || grid.depth > 65535)
         throw InputError(path, "", "df3 sizes are 16-bit: at most 65535 samples per axis");
     fs::path base = fs::path(path);

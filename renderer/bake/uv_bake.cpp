@@ -11,6 +11,7 @@
 #include "renderer/parallel_tiles.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
+#include "util/memory_budget.h"
 #include "util/progress.h"
 
 namespace nenrin {
@@ -65,6 +66,10 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
     UvMaps maps;
     maps.width = options.width;
     maps.height = options.height;
+    // The raster, 13 map channels and the writers' copies: ~128 bytes a texel.
+    requireMemory(128.0 * options.width * options.height,
+                  fmt::format("a set of {}x{} texture maps", options.width, options.height),
+                  scene.file);
     maps.raster = rasterizeUv(mesh, options.width, options.height);
     const size_t n = size_t(options.width) * options.height;
     maps.baseColour.assign(4 * n, 0);

@@ -15,6 +15,7 @@
 #include "renderer/path_tracer.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
+#include "util/memory_budget.h"
 
 namespace nenrin {
 
@@ -149,6 +150,11 @@ MergedJob mergeParts(const std::vector<std::string>& paths) {
                                  fmt::format("a {}x{} frame of {} channels: over the limit of "
                                              "2^30 values",
                                              exr.width, exr.height, exr.channels.size()));
+            // The merged frame, the part being read and the writer's copy.
+            requireMemory(3.0 * 4 * exr.width * exr.height * exr.channels.size(),
+                          fmt::format("merging a {}x{} frame of {} channels", exr.width, exr.height,
+                                      exr.channels.size()),
+                          path);
             owner.assign(number.parts, "");
             metadata = withoutPartKeys(exr.metadata);
             job.image.width = exr.width;

@@ -18,10 +18,14 @@
 #include <string_view>
 
 #include "util/input_error.h"
+#include "util/input_file.h"
 
 namespace nenrin {
 
 namespace {
+
+// About 15 million triangles; tinyobjloader holds the text and its parse at once.
+constexpr uintmax_t kMaxObjFileBytes = uintmax_t(1) << 30;
 
 /// Polygons with up to this many corners get the best ear (shortest new edge) at every step,
 /// O(n³); larger ones the first ear found, so a 1000-gon does not take seconds.
@@ -213,13 +217,7 @@ private:
 };
 
 std::string readText(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw InputError(path, "", "is a directory: expected an OBJ file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot open file for reading (does it exist?)");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw InputError(path, "", "cannot read the file");
+    std::string text = readInputFile(path, kMaxObjFileBytes, "an OBJ file");
     // tinyobjloader would stop reading a line at a NUL: this is not a text file.
     if (size_t nul = text.find('\0'); nul != std::string::npos)
         throw InputError(path, fmt::format("line {}", lineOfOffset(text, nul)),

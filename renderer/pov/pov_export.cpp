@@ -9,10 +9,12 @@
 #include <numbers>
 
 #include "renderer/bake/baked_grid.h"
+#include "renderer/bake/grid_bake.h"
 #include "renderer/bake/grid_writers.h"
 #include "renderer/parallel_tiles.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
+#include "util/memory_budget.h"
 
 namespace nenrin {
 
@@ -73,6 +75,11 @@ BakedGrid bakeObjectVolume(const SceneObject& o, const WoodShader& shader, int r
     g.stepX = {size.x / (g.width - 1), 0, 0};
     g.stepY = {0, size.y / (g.height - 1), 0};
     g.stepZ = {0, 0, size.z / (g.depth - 1)};
+    requireMemory(bakeMemoryBytes(g),
+                  fmt::format("the df3 volume of object \"{}\" ({} x {} x {} samples at --volume "
+                              "{})",
+                              o.name, g.width, g.height, g.depth, resolution),
+                  "pov");
     g.data.assign(g.sampleCount() * BakedGrid::kChannels, 0);
     parallelTiles(size_t(g.depth), threads, [&](size_t k) {
         std::vector<Vec3> points;

@@ -39,6 +39,25 @@ TEST_F(HostileNumbersCliTest, NanOptionsAreRefusedByTheParser) {
     expectFailure(r, {"--azimuth", "finite"});
 }
 
+TEST_F(HostileNumbersCliTest, MoreThreadsThanCoresStayQuiet) {
+    // --threads 64 once printed TBB's "number of workers is limited" warning through -q.
+    auto r = run({"render", kScene.string(), "-q", "--threads", "64", "--spp", "1", "-o",
+                  (out_ / "x.exr").string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+}
+
+TEST_F(HostileNumbersCliTest, TreeYearsHaveOneRangeInHelpAndErrors) {
+    // --help said 1-1000 and the model then refused 600 as "[0, 500]", naming <input>.
+    for (const char* model : {"kanayama", "hayashi", "akagi"}) {
+        auto help = run({"tree", model, "--help"});
+        EXPECT_NE(help.out.find("[1 - 500]"), std::string::npos) << model << help.out;
+        auto r = run({"tree", model, "--years", "600", "-o", (out_ / "t.json").string()});
+        expectFailure(r, {"--years", "600", "1 to 500"});
+        EXPECT_EQ(r.err.find("<input>"), std::string::npos) << r.err;
+    }
+}
+
 TEST_F(HostileNumbersCliTest, CompareRefusesImagesWithNan) {
     // Once: RMSE nan and exit 0, so a broken render passed a regression check.
     const fs::path image = in_ / "nan.exr";

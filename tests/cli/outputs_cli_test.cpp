@@ -21,13 +21,6 @@ TEST_F(OutputsCliTest, AFailedPngTakesTheExrWithIt) {
     expectInputError(r, {"missing.ocio"});
 }
 
-TEST_F(OutputsCliTest, ACommandThatFailsAfterWritingLeavesNothing) {
-    // Fifteen years grow no tree old enough to pick as "suppressed": the stand was already
-    // written when that turned out.
-    expectInputError(run({"stand", "kunii", "--years", "15", "-o", (out_ / "s.json").string()}),
-                     {"no living tree"});
-}
-
 TEST_F(OutputsCliTest, TargetsThatAreNotRegularFilesAreNeverReplaced) {
     const fs::path fifo = in_ / "fifo.exr", link = in_ / "link.exr", target = in_ / "target.exr";
     ASSERT_EQ(mkfifo(fifo.c_str(), 0644), 0);

@@ -219,6 +219,22 @@ TEST_F(TreeModelCliTest, StandFellsItsDominantAndSuppressedTrees) {
                      {"--tree", "dominant"});
 }
 
+TEST_F(TreeModelCliTest, AYoungStandIsWrittenWithoutASuppressedTree) {
+    // A 15-year stand once wrote its file and then exited 1: no tree was old enough to be
+    // called suppressed. The stand is fine; felling "suppressed" from it is the error.
+    fs::path stand = in_ / "young.json";
+    RunResult r =
+        run({"stand", "kunii", "--trees", "10", "--years", "15", "-q", "-o", stand.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("most suppressed living tree (>= 20 years old): none yet"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(fs::exists(stand));
+    expectInputError(run({"stand", "fell", stand.string(), "--tree", "suppressed", "-o",
+                          (out_ / "t.json").string()}),
+                     {"no living tree at least 20 years old"});
+}
+
 TEST_F(TreeModelCliTest, UnknownPresetsAreNamed) {
     expectInputError(
         run({"tree", "hayashi", "--preset", "larch", "-o", (out_ / "t.json").string()}),

@@ -200,6 +200,10 @@ TEST(LatewoodTiming, EachYearHasItsOwnLateWoodShare) {
         timing.profileTime(k + 0.4, &slope);
         EXPECT_GT(slope, 0);
     }
+    // Found by fuzzing: a far point's T (7e13 years) was cast to an int for its year.
+    EXPECT_EQ(timing.share(7.2e13), timing.share(2));
+    EXPECT_EQ(timing.share(-1e300), timing.share(0));
+    EXPECT_TRUE(std::isfinite(timing.profileTime(7.2e13 + 0.5)));
 }
 
 // The ring model's yearly shares: narrow rings carry relatively more late wood.

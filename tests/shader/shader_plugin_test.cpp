@@ -164,7 +164,7 @@ public:
         for (size_t i = 0; i < n; ++i) p[i] = {points[3 * i], points[3 * i + 1], points[3 * i + 2]};
         std::vector<SurfaceFootprint> f;
         if (diameters)
-            for (size_t i = 0; i < n; ++i) f.push_back({{}, {}, diameters[i]});
+            for (size_t i = 0; i < n; ++i) f.push_back({{}, {}, diameters[i], {}});
         std::vector<WoodSurfaceSample> out(n);
         WoodScratch scratch;
         shader_->evaluateSurface(p, f, out, scratch);

@@ -96,7 +96,7 @@ TEST_F(StraightTrunkSurface, FootprintFilterAveragesTheRingsUnderIt) {
     // late-wood share must equal the mean of point samples across it.
     for (double rings : {0.5, 2.0, 7.3}) {
         double w = rings * 0.004;
-        SurfaceFootprint f{{w, 0, 0}, {0, 0, 1e-6}};
+        SurfaceFootprint f{{w, 0, 0}, {0, 0, 1e-6}, 0, {}};
         Vec3 p{0.1, 0, 1};
         std::vector<WoodSurfaceSample> out(1);
         WoodScratch scratch;
@@ -115,8 +115,8 @@ TEST_F(StraightTrunkSurface, FootprintFilterAveragesTheRingsUnderIt) {
 
 TEST_F(StraightTrunkSurface, IsotropicFootprintDiameterFiltersLikeDifferentials) {
     Vec3 p{0.1, 0, 1};
-    SurfaceFootprint along{{0.01, 0, 0}, {0, 0.01, 0}};
-    SurfaceFootprint iso{{}, {}, 0.01};
+    SurfaceFootprint along{{0.01, 0, 0}, {0, 0.01, 0}, 0, {}};
+    SurfaceFootprint iso{{}, {}, 0.01, {}};
     std::vector<WoodSurfaceSample> a(1), b(1);
     WoodScratch scratch;
     shader_->evaluateSurface(std::span(&p, 1), std::span(&along, 1), a, scratch);

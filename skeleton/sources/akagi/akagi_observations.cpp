@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "util/input_error.h"
+#include "util/input_file.h"
 
 namespace nenrin {
 
@@ -132,11 +133,8 @@ ObservationTable parseAkagiObservations(const std::string& text, const std::stri
 }
 
 ObservationTable loadAkagiObservations(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot open the observation table");
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    return parseAkagiObservations(buffer.str(), path);
+    return parseAkagiObservations(readInputFile(path, size_t(64) << 20, "a CSV observation table"),
+                                  path);
 }
 
 }  // namespace nenrin

@@ -5,6 +5,7 @@
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <xmmintrin.h>
@@ -68,7 +69,8 @@ void forEachSphere(size_t n, int threads, const Body& body) {
                           });
     };
     if (threads > 0) {
-        tbb::task_arena arena(threads);
+        // At most the cores (TBB warns past them); the light does not depend on the count.
+        tbb::task_arena arena(std::min(threads, tbb::info::default_concurrency()));
         arena.execute(run);
     } else {
         run();

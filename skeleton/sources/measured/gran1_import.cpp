@@ -16,6 +16,8 @@ constexpr double kMm = 1e-3;
 constexpr double kDeadAtOnceMm = 0.1;
 /// Radial step along a knot curve (mm): fine enough that the polyline follows z = C + D√r.
 constexpr double kKnotStepMm = 5;
+/// The thickest trunks are ~5 m in radius.
+constexpr double kMaxBarkRadiusMm = 10000;
 
 std::vector<std::vector<double>> readTable(const std::string& path, size_t columns) {
     nlohmann::json j = parseJsonFile(path);
@@ -35,6 +37,11 @@ std::vector<std::vector<double>> readTable(const std::string& path, size_t colum
                 throw InputError(
                     path, fmt::format("[{}][{}]", i, c),
                     fmt::format("expected a finite number, found {}", jsonTypeName(row[c])));
+            if (std::abs(row[c].get<double>()) > kMaxJsonMagnitude)
+                throw InputError(path, fmt::format("[{}][{}]", i, c),
+                                 fmt::format("{:g} is beyond the ±{:g} of a measured log (mm, "
+                                             "degrees)",
+                                             row[c].get<double>(), kMaxJsonMagnitude));
             values.push_back(row[c].get<double>());
         }
         rows.push_back(std::move(values));
@@ -95,9 +102,11 @@ Gran1Log importGran1(const std::string& prefix, const Gran1Options& o) {
             throw InputError(radiiPath, fmt::format("[{}]", i), "expected radii per azimuth");
         double sum = 0;
         for (double r : radii[i]) {
-            if (!(r > 0))
+            // At most 10 m: sums of absurd radii once overflowed and wrote null radii.
+            if (!(r > 0 && r <= kMaxBarkRadiusMm))
                 throw InputError(radiiPath, fmt::format("[{}]", i),
-                                 fmt::format("expected bark radii > 0 mm, found {}", r));
+                                 fmt::format("expected bark radii in (0, {:g}] mm, found {:g}",
+                                             kMaxBarkRadiusMm, r));
             sum += r;
             log.minBarkRadius = std::min(log.minBarkRadius, r * kMm);
             log.maxBarkRadius = std::max(log.maxBarkRadius, r * kMm);

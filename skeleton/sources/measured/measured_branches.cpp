@@ -86,17 +86,25 @@ std::vector<Internode> readInternodes(const nlohmann::json& v, const std::string
             x[k] = e[k].get<double>();
             if (!std::isfinite(x[k])) throw InputError(file, ak, "expected a finite number");
         }
-        if (!(x[0] * unit >= 1e-6))
+        // Bounds of a tree (the tallest are ~115 m, the thickest ~10 m across).
+        if (!(x[0] * unit >= 1e-6 && x[0] * unit <= 100))
+            throw InputError(file, at + "[0]",
+                             fmt::format("internode length l must be in [1e-6, 100] m, found {:g} "
+                                         "(the file's unit is {:g} m)",
+                                         x[0], unit));
+        if (!(std::abs(x[1]) <= 3600))
             throw InputError(
-                file, at + "[0]",
-                fmt::format("internode length l must be > 0 (at least 1e-6 m), found {}", x[0]));
+                file, at + "[1]",
+                fmt::format("azimuth theta must be in [-3600, 3600] degrees, found {:g}", x[1]));
         if (!(x[2] >= -90 && x[2] <= 90))
             throw InputError(
                 file, at + "[2]",
                 fmt::format("elevation phi must be in [-90, 90] degrees, found {}", x[2]));
-        if (!(x[3] > 0))
+        if (!(x[3] > 0 && x[3] * unit <= 20))
             throw InputError(file, at + "[3]",
-                             fmt::format("base diameter d must be > 0, found {}", x[3]));
+                             fmt::format("base diameter d must be in (0, 20] m, found {:g} (the "
+                                         "file's unit is {:g} m)",
+                                         x[3], unit));
         out.push_back({x[0] * unit, x[1] * kDegree, x[2] * kDegree, x[3] * unit});
     }
     return out;

@@ -13,6 +13,7 @@
 
 #include "skeleton/segment_geometry.h"
 #include "util/input_error.h"
+#include "util/input_file.h"
 
 namespace nenrin {
 
@@ -20,6 +21,13 @@ namespace {
 
 /// Points closer than this are one point (QSM cylinders often start where the last ended).
 constexpr double kSamePoint = 1e-6;
+// Bounds of a plausible scanned tree: projected coordinates (UTM northings < 1e7 m), the
+// thickest trunks (a few metres), and the oldest trees (~5000 years; one entry per year).
+constexpr double kMaxQsmCoordinate = 1e7;
+constexpr double kMaxQsmRadius = 50;
+constexpr double kMaxQsmAge = 10000;
+// A TreeQSM text export is ~150 bytes per cylinder: a million cylinders.
+constexpr uintmax_t kMaxQsmFileBytes = uintmax_t(256) << 20;
 
 enum Column {
     Id,
@@ -161,9 +169,10 @@ private:
         bool first = true;
         while (std::getline(in, line)) {
             ++lineNo;
-            auto b = line.find_first_not_of(" \t\r");
+            auto b = line.find_first_not_of(" \t\r\f\v");
             if (b == std::string::npos || line[b] == '#' || line[b] == '%') continue;
             std::vector<std::string> cells = splitRow(line);
+            if (cells.empty()) continue;  // only separators and other white space
             if (first) {
                 first = false;
                 if (!looksNumeric(cells[0])) {
@@ -248,6 +257,10 @@ private:
         cyl.radius = number(cells, Radius, line);
         if (!(cyl.radius > 0))
             throw lineError(line, fmt::format("radius {} m: expected > 0", cyl.radius));
+        if (cyl.radius > kMaxQsmRadius)
+            throw lineError(line, fmt::format("radius {:g} m: expected at most {:g} m (is the file "
+                                              "in millimetres?)",
+                                              cyl.radius, kMaxQsmRadius));
         cyl.start = {number(cells, SX, line), number(cells, SY, line), number(cells, SZ, line)};
         if (column_[EX] >= 0) {
             cyl.end = {number(cells, EX, line), number(cells, EY, line), number(cells, EZ, line)};
@@ -258,6 +271,12 @@ private:
             if (length(axis) < 1e-9) throw lineError(line, "the axis is the zero vector");
             cyl.end = cyl.start + normalize(axis) * len;
         }
+        for (const Vec3& p : {cyl.start, cyl.end})
+            for (double v : {p.x, p.y, p.z})
+                if (std::abs(v) > kMaxQsmCoordinate)
+                    throw lineError(line, fmt::format("coordinate {:g} m: expected within "
+                                                      "±{:g} m (metres, local or projected)",
+                                                      v, kMaxQsmCoordinate));
         if (length(cyl.end - cyl.start) < kSamePoint)
             throw lineError(line, "the cylinder has no length");
         cyl.parent = integer(cells, Parent, line);
@@ -410,6 +429,12 @@ private:
             tree.branchIdOfChain.push_back(cylinders_[first].branch);
             lastBirth = std::max(lastBirth, births.back());
         }
+        if (lastBirth > kMaxQsmAge)
+            throw InputError(name_, "",
+                             fmt::format("the tree would be {:.3g} years old (its longest path "
+                                         "at {:g} m/year): expected at most {:g}; check that the "
+                                         "file is in metres, or the elongation speed",
+                                         lastBirth, o_.elongationSpeed, kMaxQsmAge));
         tree.branches = firsts.size();
         tree.age = std::max(1.0, std::ceil(lastBirth - 1e-9));
         tree.ringWidth = cylinders_[root_].radius / tree.age;
@@ -435,11 +460,7 @@ QsmTree parseQsm(const std::string& text, const std::string& name, const QsmOpti
 }
 
 QsmTree importQsm(const std::string& path, const QsmOptions& options) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path, "", "cannot open the QSM file");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parseQsm(text.str(), path, options);
+    return parseQsm(readInputFile(path, kMaxQsmFileBytes, "a QSM cylinder list"), path, options);
 }
 
 }  // namespace nenrin

@@ -149,8 +149,18 @@ TEST(MeasuredBranches, RejectsBadFilesWithPathBearingMessages) {
               "tree.json: branches.B120: parent branch B100 is missing (a branch B120 hangs on "
               "the branch with its last non-zero digit set to 0)");
     EXPECT_EQ(errorOf(tree(R"("B100": {"node": 1, "internodes": [[-1, 0, 0, 0.1]]})")),
-              "tree.json: branches.B100.internodes[0][0]: internode length l must be > 0 (at "
-              "least 1e-6 m), found -1");
+              "tree.json: branches.B100.internodes[0][0]: internode length l must be in [1e-6, "
+              "100] m, found -1 (the file's unit is 1 m)");
+    // Found by fuzzing: an internode of 8e96 m once made a NaN growth time.
+    EXPECT_EQ(errorOf(tree(R"("B100": {"node": 1, "internodes": [[8e96, 0, 0, 0.1]]})")),
+              "tree.json: branches.B100.internodes[0][0]: internode length l must be in [1e-6, "
+              "100] m, found 8e+96 (the file's unit is 1 m)");
+    EXPECT_EQ(errorOf(tree(R"("B100": {"node": 1, "internodes": [[1, 1e9, 0, 0.1]]})")),
+              "tree.json: branches.B100.internodes[0][1]: azimuth theta must be in [-3600, 3600] "
+              "degrees, found 1e+09");
+    EXPECT_EQ(errorOf(tree(R"("B100": {"node": 1, "internodes": [[1, 0, 0, 30]]})")),
+              "tree.json: branches.B100.internodes[0][3]: base diameter d must be in (0, 20] m, "
+              "found 30 (the file's unit is 1 m)");
     EXPECT_EQ(errorOf(tree(R"("B100": {"node": 2, "internodes": [[1, 0, 0, 0.1]]})")),
               "tree.json: branches.B100.node: node 2 is past the tip of the trunk (1 internodes: "
               "nodes 0..1)");

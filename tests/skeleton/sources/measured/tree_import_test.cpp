@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 
 #include "skeleton/skeleton_file.h"
@@ -77,6 +79,29 @@ TEST(Gran1Import, MissingOrBrokenFilesNameTheFile) {
     Gran1Options bad;
     bad.rings = -3;
     EXPECT_THROW(importGran1(kGran1, bad), InputError);
+    // A radius map of 1e308 mm once summed to Inf and wrote null radii the loader refused.
+    const auto dir = std::filesystem::temp_directory_path() / "nenrin-gran1-huge";
+    std::filesystem::create_directories(dir);
+    for (const char* part : {"_pith.json", "_knots.json"})
+        std::filesystem::copy_file(kGran1 + part, dir / (std::string("G") + part),
+                                   std::filesystem::copy_options::overwrite_existing);
+    nlohmann::json radii = parseJsonFile(kGran1 + "_radii.json");
+    auto errorWithRadius = [&](double r) {
+        radii[3][0] = r;
+        std::ofstream(dir / "G_radii.json") << radii.dump();
+        try {
+            importGran1((dir / "G").string());
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(errorWithRadius(1e308).find("G_radii.json: [3][0]: 1e+308 is beyond"),
+              std::string::npos);
+    EXPECT_NE(errorWithRadius(2e4).find(
+                  "G_radii.json: [3]: expected bark radii in (0, 10000] mm, found 20000"),
+              std::string::npos);
+    std::filesystem::remove_all(dir);
 }
 
 // A small QSM: a stem of four 1 m cylinders, a branch on the second cylinder with a
@@ -211,6 +236,16 @@ TEST(QsmImport, BadFilesSayWhereAndWhat) {
                   .find("forks"),
               std::string::npos);
     EXPECT_THROW(importQsm("/nonexistent.txt"), InputError);
+    // Bounds: a cylinder 1e10 m away once asked for one ring width per year of 2e10 years.
+    EXPECT_NE(qsmError("0.2\t1\t0\t0\t1e10\t0\t0\t1\t0\t0\t1\n").find("±1e+07 m"),
+              std::string::npos);
+    EXPECT_NE(qsmError("200\t1\t0\t0\t0\t0\t0\t1\t0\t0\t1\n").find("millimetres"),
+              std::string::npos);
+    EXPECT_NE(qsmError("0.2\t9e6\t0\t0\t0\t0\t0\t1\t0\t0\t1\n").find("years old"),
+              std::string::npos);
+    // Found by fuzzing: a line of other white space (a form feed) once indexed an empty row.
+    EXPECT_NE(qsmError("\f\n").find("empty"), std::string::npos);
+    EXPECT_EQ(parseQsm("\f\v\n0.2\t1\t0\t0\t0\t0\t0\t1\t0\t0\t1\n", "t.txt").cylinders, 1u);
 }
 
 }  // namespace
