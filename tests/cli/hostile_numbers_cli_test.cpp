@@ -39,6 +39,21 @@ TEST_F(HostileNumbersCliTest, NanOptionsAreRefusedByTheParser) {
     expectFailure(r, {"--azimuth", "finite"});
 }
 
+TEST_F(HostileNumbersCliTest, RangeErrorsAreShort) {
+    // CLI11's range check once printed the largest double in full: a 309-digit number.
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"render", kScene.string(), "--noise-threshold", "1e999"},
+          {"render", kScene.string(), "--spp", "1e400"},
+          {"tree", "kanayama", "--years", "1e999"},
+          {"stand", "kunii", "--irradiance", "-1e999"}}) {
+        std::vector<std::string> full = args;
+        full.insert(full.end(), {"-o", (out_ / "x.json").string()});
+        auto r = run(full);
+        expectFailure(r, {args[args.size() - 2]});
+        EXPECT_LT(r.err.size(), 200u) << r.err;
+    }
+}
+
 TEST_F(HostileNumbersCliTest, MoreThreadsThanCoresStayQuiet) {
     // --threads 64 once printed TBB's "number of workers is limited" warning through -q.
     auto r = run({"render", kScene.string(), "-q", "--threads", "64", "--spp", "1", "-o",
