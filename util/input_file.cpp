@@ -6,18 +6,9 @@
 #include <fstream>
 
 #include "util/input_error.h"
+#include "util/memory_budget.h"
 
 namespace nenrin {
-
-namespace {
-
-std::string sizeText(uintmax_t bytes) {
-    if (bytes >= (uintmax_t(1) << 30)) return fmt::format("{:.1f} GiB", bytes / double(1 << 30));
-    if (bytes >= (uintmax_t(1) << 20)) return fmt::format("{:.1f} MiB", bytes / double(1 << 20));
-    return fmt::format("{} bytes", bytes);
-}
-
-}  // namespace
 
 std::string readInputFile(const std::string& path, uintmax_t maxBytes, const std::string& what) {
     std::error_code ec;
@@ -27,9 +18,10 @@ std::string readInputFile(const std::string& path, uintmax_t maxBytes, const std
     if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
         throw InputError(path, "", "not a regular file (a device or a FIFO?): expected " + what);
     const auto tooLarge = [&](uintmax_t size) {
-        return InputError(path, "",
-                          fmt::format("{}: larger than the {} nenrin reads as {}", sizeText(size),
-                                      sizeText(maxBytes), what));
+        return InputError(
+            path, "",
+            fmt::format("{}: larger than the {} nenrin reads as {}", formatBytes(double(size)),
+                        formatBytes(double(maxBytes)), what));
     };
     if (std::filesystem::is_regular_file(status)) {
         uintmax_t size = std::filesystem::file_size(path, ec);
