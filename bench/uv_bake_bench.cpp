@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "renderer/bake/uv_bake.h"
 #include "renderer/scene_file.h"
+#include "renderer/texture_set/uv_bake.h"
 
 namespace nenrin {
 namespace {

@@ -6,8 +6,10 @@
 #include <filesystem>
 
 #include "arguments.h"
-#include "renderer/bake/uv_bake.h"
 #include "renderer/scene_file.h"
+#include "renderer/texture_set/gltf_texture_set.h"
+#include "renderer/texture_set/texture_set_files.h"
+#include "renderer/texture_set/uv_bake.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -19,7 +21,7 @@ constexpr int kMaxSide = 16384;
 struct UvBakeCliOptions {
     std::string scene, object, output;
     int resolution = 2048, padding = 8, threads = 0;
-    bool quiet = false;
+    bool quiet = false, gltf = false;
 };
 
 void run(const UvBakeCliOptions& o) {
@@ -67,8 +69,14 @@ void run(const UvBakeCliOptions& o) {
                                                 {"scene", o.scene},
                                                 {"object", o.object},
                                                 {"padding", std::to_string(o.padding)}};
-    for (const auto& f : writeUvMaps(maps, *object, o.output, metadata))
-        fmt::print("wrote {}\n", f);
+    // Inside the command's output transaction (cli/main.cpp): a failure in the glTF files
+    // leaves none of the set behind.
+    std::vector<std::string> files = writeTextureSet(maps, *object, o.output, metadata);
+    if (o.gltf) {
+        std::vector<std::string> gltf = writeGltfTextureSet(maps, *object, o.output, metadata);
+        files.insert(files.end(), gltf.begin(), gltf.end());
+    }
+    for (const auto& f : files) fmt::print("wrote {}\n", f);
     size_t covered = 0;
     for (int32_t t : r.triangle) covered += t >= 0;
     fmt::print("{}x{} texels, {:.1f}% covered by {} triangles, {} texels of padding, in {:.2f} s\n",
@@ -83,7 +91,9 @@ void addUvBakeCommand(CLI::App* bake) {
     CLI::App* cmd = bake->add_subcommand(
         "uv",
         "Bake a wood mesh of a scene onto its UV layout as linear EXR maps (basecolor, "
-        "roughness, normal, fibre, growth) plus NAME.obj/NAME.mtl; see docs/uv-bake.md");
+        "coverage, roughness, normal, fibre, growth) with NAME.obj/NAME.mtl and "
+        "texture-set.json; with --gltf also glTF 2.0 (NAME.gltf/.bin/.glb, PNG textures). "
+        "See docs/uv-bake.md");
     cmd->add_option("--scene", o->scene, "Scene JSON file (docs/scene-format.md)")->required();
     cmd->add_option("--object", o->object, "Name of a mesh object with a wood material")
         ->required();
@@ -97,6 +107,9 @@ void addUvBakeCommand(CLI::App* bake) {
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
+    cmd->add_flag("--gltf", o->gltf,
+                  "Also write glTF 2.0: NAME.gltf + NAME.bin and NAME.glb with PNG textures, the "
+                  "coat as KHR_materials_clearcoat, the fibres as KHR_materials_anisotropy");
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
     addMaxMemoryOption(cmd);
     cmd->callback([o] { run(*o); });

@@ -16,6 +16,7 @@ set(sources_of_library
     "renderer/products:geometry,grain,skeleton,util"
     "renderer:renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/bake:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
+    "renderer/texture_set:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/pov:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/preview:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/farm:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"

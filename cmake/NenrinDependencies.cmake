@@ -9,6 +9,7 @@ find_package(nlohmann_json CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(fmt CONFIG REQUIRED)
 find_package(tinyobjloader CONFIG REQUIRED)
+find_package(TinyGLTF CONFIG REQUIRED)
 
 # Quirk: OpenColorIO's CMake config computes an empty prefix on Debian; pkg-config works.
 find_package(PkgConfig REQUIRED)

@@ -41,6 +41,12 @@ inline Rgb linearFromSrgb(const Rgb& c) {
     return {f(c.r), f(c.g), f(c.b)};
 }
 
+/// sRGB-encoded from a scene-linear component (IEC 61966-2-1), clamped to [0, 1].
+inline double srgbFromLinear(double v) {
+    v = v < 0 ? 0 : (v > 1 ? 1 : v);
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+}
+
 /// ΔE*ab (CIE 1976): the distance in L*a*b*.
 inline double deltaE(const Lab& p, const Lab& q) {
     return std::sqrt((p.L - q.L) * (p.L - q.L) + (p.a - q.a) * (p.a - q.a) +

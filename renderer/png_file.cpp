@@ -31,7 +31,8 @@ void onWarning(png_structp, png_const_charp) {}
 }  // namespace
 
 void writePng8(const std::string& finalPath, const std::string& writePath, int width, int height,
-               const std::vector<uint8_t>& rgb, const std::map<std::string, std::string>& text) {
+               const std::vector<uint8_t>& rgb, const std::map<std::string, std::string>& text,
+               PngValues values) {
     File file(std::fopen(writePath.c_str(), "wb"));
     if (!file) throw InputError(finalPath, "", "cannot create the PNG");
     std::string error;
@@ -50,7 +51,8 @@ void writePng8(const std::string& finalPath, const std::string& writePath, int w
     png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
                  PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
-    png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    if (values == PngValues::SrgbColour)
+        png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     for (const auto& [key, value] : text) {
         png_text t{};
         t.compression = PNG_TEXT_COMPRESSION_NONE;

@@ -10,10 +10,15 @@
 
 namespace nenrin {
 
-/// Writes 8-bit RGB (3 per pixel, row 0 at the top) to `writePath`, marked sRGB, with `text`
-/// as tEXt chunks; errors name `finalPath`. Throws InputError if writing fails (disk full).
+/// What the values of a PNG are: sRGB colour (marked with an sRGB chunk) or data (normals,
+/// roughness: no colour chunk, so no tool converts them).
+enum class PngValues { SrgbColour, Data };
+
+/// Writes 8-bit RGB (3 per pixel, row 0 at the top) to `writePath`, with `text` as tEXt chunks;
+/// errors name `finalPath`. Throws InputError if writing fails (disk full).
 void writePng8(const std::string& finalPath, const std::string& writePath, int width, int height,
-               const std::vector<uint8_t>& rgb, const std::map<std::string, std::string>& text);
+               const std::vector<uint8_t>& rgb, const std::map<std::string, std::string>& text,
+               PngValues values = PngValues::SrgbColour);
 
 /// Reads a PNG of any bit depth and colour type as float (values / 255 or / 65535, no
 /// colour conversion): grey, grey + alpha, RGB or RGBA. Throws InputError naming `path`.

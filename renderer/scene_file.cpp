@@ -7,6 +7,7 @@
 #include <map>
 
 #include "grain/grain_params.h"
+#include "renderer/geometry/gltf_mesh.h"
 #include "renderer/products/cut_plan.h"
 #include "renderer/products/log_slice.h"
 #include "skeleton/skeleton_file.h"
@@ -288,9 +289,10 @@ SceneObject readObject(JsonReader& r, Scene& scene,
                 throw r.error("size", "expected three sizes > 0");
         } else {
             o.shape = ShapeType::Mesh;
-            if (!r.has("file")) throw r.error("file", "missing: the OBJ file");
-            auto mesh =
-                std::make_shared<TriangleMesh>(loadObjMesh(resolve(scene, r.string("file", ""))));
+            if (!r.has("file")) throw r.error("file", "missing: the OBJ or glTF file");
+            const std::string file = resolve(scene, r.string("file", ""));
+            auto mesh = std::make_shared<TriangleMesh>(isGltfPath(file) ? loadGltfMesh(file)
+                                                                        : loadObjMesh(file));
             double scale = r.positive("scale", 1);
             for (Vec3& p : mesh->positions) p = p * scale;
             o.mesh = mesh;

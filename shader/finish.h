@@ -18,7 +18,8 @@ struct Finish {
     double woodRoughness = 0.55;  ///< GGX alpha of the bare wood (reported to plugin hosts)
 };
 
-/// "matte" (sanded), "oiled", "varnished", "bare" (Lambert only). False for an unknown name.
+/// "matte" (sanded), "oiled", "varnished", "bare" (Lambert only), "brushed" (wire-brushed and
+/// oiled: the late wood stands out). False for an unknown name.
 bool finishPreset(const std::string& name, Finish& out);
 /// The preset names, comma separated, for error messages.
 const char* finishPresetNames();

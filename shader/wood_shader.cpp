@@ -144,6 +144,7 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         // Past a footprint of a ring or so the relief averages out: fade it with the filter.
         double fade = 1 / (1 + width * width * 4);
         o.reliefGradient = o.gradientT * (finish_.bumpDepth * slope * fade) + anatomyRelief;
+        o.meanReliefGradient = o.gradientT * (finish_.bumpDepth * slope) + anatomyRelief;
         o.roughness = coatAlpha;
     }
 }

@@ -53,6 +53,10 @@ struct WoodSurfaceSample {
     /// Gradient of the relief height (m/m, tree space): bump mapping tilts the normal by its
     /// component along the surface.
     Vec3 reliefGradient;
+    /// The relief's mean slope over the footprint, without the fade the renderer adds past a
+    /// ring or so: what a texel of a normal map holds (the host's mip-mapping then averages
+    /// further), so a texel on a late-wood edge keeps its tilt.
+    Vec3 meanReliefGradient;
 };
 
 /// Per-thread buffers.

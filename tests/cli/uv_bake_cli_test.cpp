@@ -5,6 +5,10 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
 #include "tests/cli/cli_fixture.h"
 
 namespace {
@@ -37,56 +41,204 @@ TEST_F(UvBakeCliTest, WritesMapsMeshAndMaterial) {
     RunResult r = bake(out_, {"--res", "128"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(outputFiles(),
-              (std::vector<std::string>{"basecolor.exr", "cube.mtl", "cube.obj", "fibre.exr",
-                                        "growth.exr", "normal.exr", "roughness.exr"}));
+              (std::vector<std::string>{"basecolor.exr", "coverage.exr", "cube.mtl", "cube.obj",
+                                        "fibre.exr", "growth.exr", "normal.exr", "roughness.exr",
+                                        "texture-set.json"}));
     auto base = readImage(out_ / "basecolor.exr");
-    ASSERT_TRUE(base);
+    auto coverage = readImage(out_ / "coverage.exr");
+    ASSERT_TRUE(base && coverage);
     EXPECT_EQ(base->spec.width, 128);
-    EXPECT_EQ(base->spec.nchannels, 4);
+    // Opaque: no alpha channel a tool could un-premultiply; coverage is its own mask.
+    EXPECT_EQ(base->spec.nchannels, 3);
+    EXPECT_EQ(coverage->spec.nchannels, 1);
     std::string mtl = readText(out_ / "cube.mtl");
-    EXPECT_NE(mtl.find("map_Kd basecolor.exr"), std::string::npos) << mtl;
+    for (const char* key : {"map_Kd basecolor.exr", "map_Pr roughness.exr", "norm normal.exr",
+                            "Ks 0.5 0.5 0.5", "Pc 0.6000", "Pcr 0.6708", "Pr 0.4690"})
+        EXPECT_NE(mtl.find(key), std::string::npos) << key << " in\n" << mtl;
+    // map_Bump would be read as a height map; Ks 0 would switch the coat off.
+    EXPECT_EQ(mtl.find("map_Bump"), std::string::npos) << mtl;
+    EXPECT_EQ(mtl.find("Ks 0 "), std::string::npos) << mtl;
     EXPECT_NE(readText(out_ / "cube.obj").find("mtllib cube.mtl"), std::string::npos);
-    // A flat chart interior with no relief: the normal map is (0.5, 0.5, ~1).
+    auto description = nlohmann::json::parse(readText(out_ / "texture-set.json"));
+    EXPECT_EQ(description["format"], "nenrin texture set");
+    EXPECT_NEAR(description["finish"]["coat_roughness"].get<double>(), std::sqrt(0.45), 1e-9);
+    // Perceptual roughness: the matte fibre lobe's width 0.22 rad is its GGX alpha.
+    auto roughness = readImage(out_ / "roughness.exr");
+    ASSERT_TRUE(roughness);
+    for (float v : roughness->pixels) ASSERT_NEAR(v, std::sqrt(0.22), 1e-6);
+    // A flat chart interior with the matte finish's faint relief: the normal map is
+    // (0.5, 0.5, ~1).
     auto normal = readImage(out_ / "normal.exr");
     ASSERT_TRUE(normal);
     double zMean = 0, count = 0;
-    for (size_t i = 0; i < normal->pixels.size() / 3; ++i) {
-        if (base->pixels[4 * i + 3] < 1) continue;
+    for (size_t i = 0; i < coverage->pixels.size(); ++i) {
+        if (coverage->pixels[i] < 1) continue;
         zMean += normal->pixels[3 * i + 2];
         count += 1;
     }
     EXPECT_GT(zMean / count, 0.98);
 }
 
-TEST_F(UvBakeCliTest, PaddingFillsAGutterAroundTheCharts) {
+TEST_F(UvBakeCliTest, PaddingFillsAGutterAndTheRestIsNeutral) {
     ASSERT_EQ(bake(out_, {"--res", "256", "--padding", "4"}).exitCode, 0);
     auto base = readImage(out_ / "basecolor.exr");
-    ASSERT_TRUE(base);
-    // Alpha marks the charts; RGB must be wood (non-zero) up to 4 texels outside them and
-    // background (zero) far away.
+    auto coverage = readImage(out_ / "coverage.exr");
+    auto normal = readImage(out_ / "normal.exr");
+    auto fibre = readImage(out_ / "fibre.exr");
+    ASSERT_TRUE(base && coverage && normal && fibre);
+    // Coverage marks the charts; RGB must be wood up to 4 texels outside them, and past the
+    // gutter the mean wood colour, a flat normal and a fibre along +u: no zero vectors.
     size_t padded = 0, empty = 0;
     const int w = 256;
+    double mean[3] = {0, 0, 0}, covered = 0;
+    for (size_t i = 0; i < size_t(w) * w; ++i)
+        if (coverage->pixels[i] > 0) {
+            for (int c = 0; c < 3; ++c) mean[c] += base->pixels[3 * i + c];
+            covered += 1;
+        }
     for (int y = 0; y < w; ++y)
         for (int x = 0; x < w; ++x) {
-            const float* p = &base->pixels[4 * (size_t(y) * w + x)];
-            if (p[3] > 0) continue;
+            size_t i = size_t(y) * w + x;
+            if (coverage->pixels[i] > 0) continue;
             bool nearChart = false;
             for (int dy = -4; dy <= 4 && !nearChart; ++dy)
                 for (int dx = -4; dx <= 4 && !nearChart; ++dx) {
                     int xx = x + dx, yy = y + dy;
                     if (xx >= 0 && yy >= 0 && xx < w && yy < w &&
-                        base->pixels[4 * (size_t(yy) * w + xx) + 3] > 0)
+                        coverage->pixels[size_t(yy) * w + xx] > 0)
                         nearChart = true;
                 }
             if (nearChart) {
-                EXPECT_GT(p[0], 0.f) << x << "," << y;
+                EXPECT_GT(base->pixels[3 * i], 0.f) << x << "," << y;
                 ++padded;
-            } else {
-                ++empty;
+                continue;
             }
+            ++empty;
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(base->pixels[3 * i + c], mean[c] / covered, 1e-5) << x << "," << y;
+            ASSERT_EQ(normal->pixels[3 * i], 0.5f);
+            ASSERT_EQ(normal->pixels[3 * i + 1], 0.5f);
+            ASSERT_EQ(normal->pixels[3 * i + 2], 1.f);
+            ASSERT_EQ(fibre->pixels[3 * i], 1.f);
+            ASSERT_EQ(fibre->pixels[3 * i + 1], 0.5f);
         }
     EXPECT_GT(padded, 100u);
     EXPECT_GT(empty, 0u);
+}
+
+TEST_F(UvBakeCliTest, ReliefShowsWhereTheWoodHasItAndIsFlatWhereItHasNone) {
+    // The tilt of the baked normals: a brushed finish leaves the late wood 0.15 mm proud, and
+    // at 0.8 mm texels its edges tilt by degrees; bare wood has no relief at all.
+    auto tilts = [&](const std::string& finish) {
+        std::string text = readText(kCubeScene);
+        size_t at = text.find(R"("finish": "matte")");
+        EXPECT_NE(at, std::string::npos);
+        text.replace(at, 17, "\"finish\": \"" + finish + "\"");
+        for (const char* rel : {"../../../scenes/", "../grain/", "../meshes/"}) {
+            size_t p = text.find(rel);
+            EXPECT_NE(p, std::string::npos) << rel;
+            text.replace(p, std::string(rel).size(),
+                         (kSourceDir / "tests/data/scenes" / rel).lexically_normal().string());
+        }
+        fs::path scene = in_ / (finish + ".json"), folder = out_ / finish;
+        std::ofstream(scene) << text;
+        fs::create_directory(folder);
+        RunResult r = run({"bake", "uv", "--scene", scene.string(), "--object", "cube", "--res",
+                           "256", "-o", folder.string(), "-q"});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        auto normal = readImage(folder / "normal.exr");
+        auto coverage = readImage(folder / "coverage.exr");
+        std::vector<double> t;
+        for (size_t i = 0; normal && coverage && i < coverage->pixels.size(); ++i)
+            if (coverage->pixels[i] > 0) {
+                double x = 2 * normal->pixels[3 * i] - 1, y = 2 * normal->pixels[3 * i + 1] - 1;
+                t.push_back(std::atan(std::hypot(x, y) / (2 * normal->pixels[3 * i + 2] - 1)) *
+                            180 / M_PI);
+            }
+        std::sort(t.begin(), t.end());
+        return t;
+    };
+    std::vector<double> brushed = tilts("brushed"), bare = tilts("bare");
+    ASSERT_FALSE(brushed.empty());
+    ASSERT_FALSE(bare.empty());
+    double p90 = brushed[brushed.size() * 9 / 10], p99 = brushed[brushed.size() * 99 / 100];
+    std::printf("brushed: tilt p90 %.2f, p99 %.2f degrees; bare: max %.4f degrees\n", p90, p99,
+                bare.back());
+    EXPECT_GT(p90, 1.0);  // a strength-1 normal map shows it in a highlight
+    EXPECT_LT(p99, 45.0);
+    EXPECT_LT(bare.back(), 0.01);  // flat (8-bit-free float EXR: exactly (0, 0, 1) up to float)
+}
+
+TEST_F(UvBakeCliTest, GltfFilesComeWithTheFlagAndCarryTheMaps) {
+    ASSERT_EQ(bake(out_, {"--res", "64"}).exitCode, 0);
+    EXPECT_FALSE(fs::exists(out_ / "cube.gltf"));
+    fs::path g = out_ / "g";
+    fs::create_directory(g);
+    ASSERT_EQ(bake(g, {"--res", "64", "--gltf"}).exitCode, 0);
+    for (const char* f : {"cube.gltf", "cube.bin", "cube.glb", "basecolor.png",
+                          "metallic-roughness.png", "normal.png", "anisotropy.png"})
+        EXPECT_TRUE(fs::exists(g / f)) << f;
+    // The PNGs are the EXR maps in glTF's encodings: base colour sRGB, roughness in G,
+    // the normal map as is.
+    auto exrBase = readImage(g / "basecolor.exr"), pngBase = readImage(g / "basecolor.png");
+    auto exrRough = readImage(g / "roughness.exr"), mr = readImage(g / "metallic-roughness.png");
+    auto exrNormal = readImage(g / "normal.exr"), pngNormal = readImage(g / "normal.png");
+    ASSERT_TRUE(exrBase && pngBase && exrRough && mr && exrNormal && pngNormal);
+    for (size_t i = 0; i < exrRough->pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            double linear = std::clamp<double>(exrBase->pixels[3 * i + c], 0, 1);
+            double srgb =
+                linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+            ASSERT_NEAR(pngBase->pixels[3 * i + c], srgb, 0.5 / 255 + 1e-6) << i;
+            ASSERT_NEAR(pngNormal->pixels[3 * i + c], exrNormal->pixels[3 * i + c],
+                        0.5 / 255 + 1e-6);
+        }
+        ASSERT_NEAR(mr->pixels[3 * i + 1], exrRough->pixels[i], 0.5 / 255 + 1e-6);
+        ASSERT_EQ(mr->pixels[3 * i + 2], 0.f);  // metallic
+    }
+    auto gltf = nlohmann::json::parse(readText(g / "cube.gltf"));
+    EXPECT_EQ(gltf["buffers"][0]["uri"], "cube.bin");
+    EXPECT_EQ(gltf["buffers"][0]["byteLength"].get<size_t>(), fs::file_size(g / "cube.bin"));
+    const auto& material = gltf["materials"][0];
+    EXPECT_NEAR(
+        material["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"].get<double>(),
+        std::sqrt(0.45), 1e-9);
+    EXPECT_GT(
+        material["extensions"]["KHR_materials_anisotropy"]["anisotropyStrength"].get<double>(),
+        0.5);
+}
+
+TEST_F(UvBakeCliTest, AGlbMeshBakesLikeTheObjItCameFrom) {
+    fs::path first = out_ / "first", second = out_ / "second";
+    fs::create_directory(first);
+    fs::create_directory(second);
+    ASSERT_EQ(bake(first, {"--res", "128", "--gltf"}).exitCode, 0);
+    // The written .glb (the 0.1 m cube, already scaled) as the input mesh of the same scene.
+    std::string text = readText(kCubeScene);
+    const std::string from = R"("file": "../meshes/uv-cube.obj", "scale": 0.5)";
+    size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, from.size(), "\"file\": \"" + (first / "cube.glb").string() + "\"");
+    for (const char* rel : {"../../../scenes/", "../grain/"}) {
+        size_t p = text.find(rel);
+        ASSERT_NE(p, std::string::npos) << rel;
+        text.replace(p, std::string(rel).size(),
+                     (kSourceDir / "tests/data/scenes" / rel).lexically_normal().string());
+    }
+    fs::path scene = in_ / "from-glb.json";
+    std::ofstream(scene) << text;
+    RunResult r = run({"bake", "uv", "--scene", scene.string(), "--object", "cube", "--res", "128",
+                       "-o", second.string(), "-q"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto a = readImage(first / "growth.exr"), b = readImage(second / "growth.exr");
+    auto ca = readImage(first / "coverage.exr"), cb = readImage(second / "coverage.exr");
+    ASSERT_TRUE(a && b && ca && cb);
+    EXPECT_EQ(ca->pixels, cb->pixels);  // the same uv layout
+    double worst = 0;
+    for (size_t i = 0; i < ca->pixels.size(); ++i)
+        if (ca->pixels[i] > 0)
+            worst = std::max(worst, double(std::abs(a->pixels[2 * i] - b->pixels[2 * i])));
+    EXPECT_LT(worst, 1e-3) << "years";  // float32 positions in both files
 }
 
 TEST_F(UvBakeCliTest, SameBytesForOneAndTwoThreads) {
@@ -95,7 +247,8 @@ TEST_F(UvBakeCliTest, SameBytesForOneAndTwoThreads) {
     fs::create_directory(b);
     ASSERT_EQ(bake(a, {"--res", "96", "--threads", "1"}).exitCode, 0);
     ASSERT_EQ(bake(b, {"--res", "96", "--threads", "2"}).exitCode, 0);
-    for (const char* f : {"basecolor.exr", "normal.exr", "fibre.exr", "growth.exr"})
+    for (const char* f : {"basecolor.exr", "coverage.exr", "roughness.exr", "normal.exr",
+                          "fibre.exr", "growth.exr"})
         EXPECT_EQ(readBytes(a / f), readBytes(b / f)) << f;
 }
 

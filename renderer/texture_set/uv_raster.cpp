@@ -1,4 +1,4 @@
-#include "renderer/bake/uv_raster.h"
+#include "renderer/texture_set/uv_raster.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,12 +5,11 @@
 /// prefilter with dP/du / W and dP/dv / H as the footprint). Then gutter padding past the UV
 /// seams. The maps are described in docs/uv-bake.md.
 
-#include <map>
-#include <string>
 #include <vector>
 
-#include "renderer/bake/uv_raster.h"
 #include "renderer/scene.h"
+#include "renderer/texture_set/uv_raster.h"
+#include "shader/finish.h"
 
 namespace nenrin {
 
@@ -21,28 +20,25 @@ struct UvBakeOptions {
     bool quiet = false;
 };
 
-/// The baked maps, row 0 at the top (v = 1), each row-major.
+/// The baked maps, row 0 at the top (v = 1), each row-major. Every texel holds a meaningful
+/// value: covered ones the wood, the gutter their neighbours' mean, the rest neutral values
+/// (the mean wood colour, a flat normal, a fibre along +u).
 struct UvMaps {
     int width = 0, height = 0;
-    std::vector<float>
-        baseColour;  ///< RGBA: scene-linear albedo, A = texel covered (before padding)
-    std::vector<float> roughness;  ///< 1 channel: GGX alpha of the finish
-    std::vector<float>
-        normal;                ///< RGB: tangent-space normal from the late-wood relief, 0.5 n + 0.5
-    std::vector<float> fibre;  ///< RGB: tangent-space fibre direction, 0.5 f + 0.5
+    std::vector<float> baseColour;  ///< RGB: scene-linear albedo (opaque)
+    std::vector<float> coverage;    ///< 1 channel: 1 on texels a triangle covers, else 0
+    /// 1 channel: perceptual roughness of the base's specular lobe (renderer/texture_set/
+    /// pbr_finish.h); the coat's is a constant of the finish.
+    std::vector<float> roughness;
+    std::vector<float> normal;  ///< RGB: tangent-space normal from the relief, 0.5 n + 0.5
+    std::vector<float> fibre;   ///< RGB: tangent-space fibre direction, 0.5 f + 0.5
     std::vector<float> growth;  ///< 2 channels: T (years), knot (0..1)
+    Finish finish;              ///< of the wood material: the constants of the set
     UvRaster raster;            ///< coverage, overlaps, uvs outside [0,1]
 };
 
 /// Bakes `object` (a mesh with uvs and a wood material) of `scene`. Throws InputError if the
 /// object is not such a mesh.
 UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOptions& options);
-
-/// Writes the maps as linear EXR into `folder` (basecolor.exr, roughness.exr, normal.exr,
-/// fibre.exr, growth.exr), the mesh as NAME.obj with NAME.mtl pointing at them. Every file is
-/// written to a temporary name first. Returns the files written.
-std::vector<std::string> writeUvMaps(const UvMaps& maps, const SceneObject& object,
-                                     const std::string& folder,
-                                     const std::map<std::string, std::string>& metadata);
 
 }  // namespace nenrin

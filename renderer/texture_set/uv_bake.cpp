@@ -1,15 +1,12 @@
-#include "renderer/bake/uv_bake.h"
+#include "renderer/texture_set/uv_bake.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
-#include "renderer/exr_file.h"
 #include "renderer/parallel_tiles.h"
-#include "util/atomic_output.h"
+#include "renderer/texture_set/pbr_finish.h"
 #include "util/input_error.h"
 #include "util/memory_budget.h"
 #include "util/progress.h"
@@ -66,17 +63,27 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
     UvMaps maps;
     maps.width = options.width;
     maps.height = options.height;
-    // The raster, 13 map channels and the writers' copies: ~128 bytes a texel.
-    requireMemory(128.0 * options.width * options.height,
+    maps.finish = shader.finish();
+    // The raster, 15 map channels and the writers' copies: ~136 bytes a texel.
+    requireMemory(136.0 * options.width * options.height,
                   fmt::format("a set of {}x{} texture maps", options.width, options.height),
                   scene.file);
     maps.raster = rasterizeUv(mesh, options.width, options.height);
     const size_t n = size_t(options.width) * options.height;
-    maps.baseColour.assign(4 * n, 0);
-    maps.roughness.assign(n, 0);
+    // What texels no chart reaches hold: a flat normal, a fibre along +u, the finish's
+    // roughness, so a host that samples them (mip-mapping, bilinear lookups) sees neutral
+    // values, never a zero vector. The base colour is filled with the mean wood below.
+    const float baseRoughness = float(pbrFinish(maps.finish).baseRoughness);
+    maps.baseColour.assign(3 * n, 0);
+    maps.coverage.assign(n, 0);
+    maps.roughness.assign(n, baseRoughness);
     maps.normal.assign(3 * n, 0);
     maps.fibre.assign(3 * n, 0);
     maps.growth.assign(2 * n, 0);
+    for (size_t i = 0; i < n; ++i) {
+        encodeUnit(&maps.normal[3 * i], {0, 0, 1});
+        encodeUnit(&maps.fibre[3 * i], {1, 0, 0});
+    }
 
     std::vector<TriangleFrame> frames(mesh.triangles.size());
     for (uint32_t t = 0; t < frames.size(); ++t) frames[t] = triangleFrame(mesh, t);
@@ -131,13 +138,13 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
             size_t i = texels[k];
             const WoodSurfaceSample& s = samples[k];
             Rgb albedo = s.coverage > 0 || !(s.albedo == Rgb{}) ? s.albedo : kBarkAlbedo;
-            maps.baseColour[4 * i] = float(albedo.r);
-            maps.baseColour[4 * i + 1] = float(albedo.g);
-            maps.baseColour[4 * i + 2] = float(albedo.b);
-            maps.baseColour[4 * i + 3] = 1;
-            maps.roughness[i] = float(s.roughness);
+            maps.baseColour[3 * i] = float(albedo.r);
+            maps.baseColour[3 * i + 1] = float(albedo.g);
+            maps.baseColour[3 * i + 2] = float(albedo.b);
+            maps.coverage[i] = 1;
             const Vec3 &n = normals[k], &t = tangents[k], &bt = bitangents[k];
-            Vec3 g = objectFromTree.vector(s.reliefGradient);
+            // The relief's mean slope over the texel: the host's mip-mapping does the rest.
+            Vec3 g = objectFromTree.vector(s.meanReliefGradient);
             Vec3 bumped = normalize(n - (g - n * dot(g, n)));
             encodeUnit(&maps.normal[3 * i], {dot(bumped, t), dot(bumped, bt), dot(bumped, n)});
             Vec3 f = objectFromTree.vector(s.fibre);
@@ -155,88 +162,23 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
         std::vector<uint8_t> covered = base;
         dilate(pixels, channels, maps.width, maps.height, covered, options.padding);
     };
-    // Alpha keeps the unpadded coverage: pad RGB only.
-    std::vector<float> rgb(3 * n);
+    // Past the gutter the base colour is the mean wood (summed in a fixed order, so the bytes
+    // do not depend on the threads), so far mip levels keep the wood's tone.
+    double sum[3] = {0, 0, 0}, count = 0;
     for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) rgb[3 * i + c] = maps.baseColour[4 * i + c];
-    pad(rgb, 3);
-    for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) maps.baseColour[4 * i + c] = rgb[3 * i + c];
-    pad(maps.roughness, 1);
+        if (base[i]) {
+            for (int c = 0; c < 3; ++c) sum[c] += maps.baseColour[3 * i + c];
+            count += 1;
+        }
+    if (count > 0)
+        for (size_t i = 0; i < n; ++i)
+            if (!base[i])
+                for (int c = 0; c < 3; ++c) maps.baseColour[3 * i + c] = float(sum[c] / count);
+    pad(maps.baseColour, 3);
     pad(maps.normal, 3);
     pad(maps.fibre, 3);
     pad(maps.growth, 2);
     return maps;
-}
-
-std::vector<std::string> writeUvMaps(const UvMaps& maps, const SceneObject& object,
-                                     const std::string& folder,
-                                     const std::map<std::string, std::string>& metadata) {
-    namespace fs = std::filesystem;
-    if (!fs::is_directory(folder))
-        throw InputError(folder, "output", "expected an existing folder for the maps");
-    struct Map {
-        const char* file;
-        const std::vector<float>* pixels;
-        std::vector<std::string> channels;
-    };
-    const std::vector<Map> list = {
-        {"basecolor.exr", &maps.baseColour, {"R", "G", "B", "A"}},
-        {"roughness.exr", &maps.roughness, {"Y"}},
-        {"normal.exr", &maps.normal, {"R", "G", "B"}},
-        {"fibre.exr", &maps.fibre, {"R", "G", "B"}},
-        {"growth.exr", &maps.growth, {"T", "knot"}},
-    };
-    std::string stem = object.name;
-    for (char& c : stem)
-        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
-    std::vector<std::unique_ptr<AtomicOutput>> outputs;
-    std::vector<std::string> written;
-    for (const Map& m : list) {
-        std::string path = (fs::path(folder) / m.file).string();
-        outputs.push_back(std::make_unique<AtomicOutput>(path));
-        writeFloatExr(path, outputs.back()->temporaryPath(), maps.width, maps.height, m.channels,
-                      m.pixels->data(), metadata);
-        written.push_back(path);
-    }
-    // The mesh and a material pointing at the maps, so the bake opens textured.
-    const TriangleMesh& mesh = *object.mesh;
-    std::string objPath = (fs::path(folder) / (stem + ".obj")).string();
-    std::string mtlPath = (fs::path(folder) / (stem + ".mtl")).string();
-    outputs.push_back(std::make_unique<AtomicOutput>(objPath));
-    {
-        std::ofstream obj(outputs.back()->temporaryPath());
-        obj << "# nenrin bake uv: " << object.name << "\nmtllib " << stem << ".mtl\nusemtl " << stem
-            << "\n";
-        for (const Vec3& p : mesh.positions) obj << fmt::format("v {} {} {}\n", p.x, p.y, p.z);
-        for (const auto& uv : mesh.uvs) obj << fmt::format("vt {} {}\n", uv[0], uv[1]);
-        for (const Vec3& nrm : mesh.normals)
-            obj << fmt::format("vn {} {} {}\n", nrm.x, nrm.y, nrm.z);
-        for (const auto& t : mesh.triangles) {
-            obj << "f";
-            for (uint32_t v : t) {
-                if (mesh.normals.empty())
-                    obj << fmt::format(" {}/{}", v + 1, v + 1);
-                else
-                    obj << fmt::format(" {}/{}/{}", v + 1, v + 1, v + 1);
-            }
-            obj << "\n";
-        }
-        if (!obj) throw InputError(objPath, "output", "could not write the mesh");
-    }
-    written.push_back(objPath);
-    outputs.push_back(std::make_unique<AtomicOutput>(mtlPath));
-    {
-        std::ofstream mtl(outputs.back()->temporaryPath());
-        mtl << "# nenrin bake uv: linear EXR maps (docs/uv-bake.md)\nnewmtl " << stem
-            << "\nKd 1 1 1\nKs 0 0 0\nmap_Kd basecolor.exr\nmap_Pr roughness.exr\n"
-               "norm normal.exr\nmap_Bump -bm 1 normal.exr\n";
-        if (!mtl) throw InputError(mtlPath, "output", "could not write the material");
-    }
-    written.push_back(mtlPath);
-    // Only now, with every file complete, do they get their names.
-    for (auto& o : outputs) o->commit();
-    return written;
 }
 
 }  // namespace nenrin
