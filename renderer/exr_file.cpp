@@ -23,7 +23,8 @@ namespace nenrin {
 
 void writeFloatExr(const std::string& finalPath, const std::string& writePath, int width,
                    int height, const std::vector<std::string>& channels, const float* pixels,
-                   const std::map<std::string, std::string>& metadata, RowBand band) {
+                   const std::map<std::string, std::string>& metadata, RowBand band,
+                   ExrValues values) {
     const int end = band.end < 0 ? height : band.end;
     requireFiniteOutput(pixels, size_t(end - band.begin) * width * channels.size(), channels, width,
                         band.begin, finalPath);
@@ -33,7 +34,10 @@ void writeFloatExr(const std::string& finalPath, const std::string& writePath, i
     Imf::Header header(display, data, 1, Imath::V2f(0, 0), 1, Imf::INCREASING_Y,
                        Imf::ZIP_COMPRESSION);
     header.zipCompressionLevel() = 1;
-    header.insert("oiio:ColorSpace", Imf::StringAttribute("Linear"));
+    if (values == ExrValues::SceneLinear)
+        header.insert("oiio:ColorSpace", Imf::StringAttribute("Linear"));
+    else
+        header.insert("colorInteropID", Imf::StringAttribute("data"));
     for (const auto& [key, value] : metadata)
         header.insert("nenrin:" + key, Imf::StringAttribute(value));
     Imf::FrameBuffer frame;

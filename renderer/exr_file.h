@@ -11,13 +11,19 @@
 
 namespace nenrin {
 
+/// What an EXR's values are: scene-linear colour (marked oiio:ColorSpace "Linear"), or data
+/// such as normals and roughness (marked colorInteropID "data", the ASWF Color Interop
+/// Forum's tag, so no colour-managed tool converts them).
+enum class ExrValues { SceneLinear, Data };
+
 /// Writes `pixels` (channel-interleaved, row 0 at the top) to `writePath`; errors name
 /// `finalPath` (the name the caller will rename it to). A channel named "A" is the alpha.
 /// With a band, `pixels` hold only its rows, written as the EXR data window of a width x
 /// height frame (the display window): how the parts of a split job are stored.
 void writeFloatExr(const std::string& finalPath, const std::string& writePath, int width,
                    int height, const std::vector<std::string>& channels, const float* pixels,
-                   const std::map<std::string, std::string>& metadata, RowBand band = {});
+                   const std::map<std::string, std::string>& metadata, RowBand band = {},
+                   ExrValues values = ExrValues::SceneLinear);
 
 /// An EXR read back whole: its data window, channels, pixels and nenrin:KEY metadata.
 struct FloatExr {

@@ -128,14 +128,14 @@ def nenrin_executable(context):
     return found
 
 
-def bake_scene(obj_path, skeleton, grain, finish, log_position, log_rotate):
+def bake_scene(name, obj_path, skeleton, grain, finish, log_position, log_rotate):
     material = {"name": "wood", "type": "wood", "skeleton": skeleton, "finish": finish}
     if grain:
         material["grain"] = grain
     return {
         "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]},
         "materials": [material],
-        "objects": [{"name": "piece", "type": "mesh", "file": obj_path, "material": "wood",
+        "objects": [{"name": name, "type": "mesh", "file": obj_path, "material": "wood",
                      "log": {"position": list(log_position), "rotate": list(log_rotate)}}],
     }
 
@@ -190,10 +190,10 @@ class NENRIN_OT_bake_wood(bpy.types.Operator):
                                       up_axis="Y")
                 scene = os.path.join(work, "bake.json")
                 with open(scene, "w", encoding="utf-8") as f:
-                    json.dump(bake_scene(mesh, bpy.path.abspath(self.skeleton),
+                    json.dump(bake_scene(obj.name, mesh, bpy.path.abspath(self.skeleton),
                                          bpy.path.abspath(self.grain) if self.grain else "",
                                          self.finish, self.log_position, self.log_rotate), f)
-                run = subprocess.run([exe, "bake", "uv", "--scene", scene, "--object", "piece",
+                run = subprocess.run([exe, "bake", "uv", "--scene", scene, "--object", obj.name,
                                       "--res", str(self.resolution), "-o", out, "-q"],
                                      capture_output=True, text=True)
             if run.returncode != 0:

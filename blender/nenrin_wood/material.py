@@ -34,6 +34,7 @@ def _image(nodes, folder, file, colour, location):
         raise FileNotFoundError(f"nenrin texture set: {path} is missing")
     node = nodes.new("ShaderNodeTexImage")
     node.image = bpy.data.images.load(path, check_existing=True)
+    node.image.reload()  # a bake into the same folder must show the new maps
     node.image.colorspace_settings.name = colour
     node.interpolation = "Linear"
     node.location = location

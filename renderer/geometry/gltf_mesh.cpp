@@ -181,8 +181,8 @@ bool noImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, in
     return true;
 }
 
-/// Buffers and images are read through nenrin's input rules (no devices, no folders, a size
-/// limit), and paths are taken as written: tinygltf's default expands them with wordexp().
+/// Buffers are read through nenrin's input rules (no devices, no folders, a size limit);
+/// paths are taken as written.
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                    void*) {
     try {

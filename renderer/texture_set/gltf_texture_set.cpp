@@ -5,10 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
 #include <fstream>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -344,7 +341,6 @@ std::vector<std::string> writeGltfTextureSet(const UvMaps& maps, const SceneObje
             tinygltf::Image image;
             image.mimeType = "image/png";
             image.bufferView = addView(model, at, png.size(), 0);
-            model.bufferViews.back().target = 0;
             model.images.push_back(image);
         }
         const std::string& glbPath = out.add(stem + ".glb");

@@ -18,17 +18,42 @@ struct MapFile {
     const char* file;
     const std::vector<float>* pixels;
     std::vector<std::string> channels;
+    ExrValues values;
     const char* encoding;  ///< how texture-set.json describes the values
 };
 
 std::vector<MapFile> mapFiles(const UvMaps& maps) {
     return {
-        {"basecolor.exr", &maps.baseColour, {"R", "G", "B"}, "colour: scene-linear Rec.709"},
-        {"coverage.exr", &maps.coverage, {"Y"}, "data: 1 = texel on the mesh, 0 = gutter"},
-        {"roughness.exr", &maps.roughness, {"Y"}, "data: perceptual roughness (alpha = r^2)"},
-        {"normal.exr", &maps.normal, {"R", "G", "B"}, "data: tangent-space normal, 0.5 n + 0.5"},
-        {"fibre.exr", &maps.fibre, {"R", "G", "B"}, "data: tangent-space fibre, 0.5 f + 0.5"},
-        {"growth.exr", &maps.growth, {"T", "knot"}, "data: growth time (years), knot share"},
+        {"basecolor.exr",
+         &maps.baseColour,
+         {"R", "G", "B"},
+         ExrValues::SceneLinear,
+         "colour: scene-linear Rec.709"},
+        {"coverage.exr",
+         &maps.coverage,
+         {"Y"},
+         ExrValues::Data,
+         "data: 1 = texel on the mesh, 0 = gutter"},
+        {"roughness.exr",
+         &maps.roughness,
+         {"Y"},
+         ExrValues::Data,
+         "data: perceptual roughness (alpha = r^2)"},
+        {"normal.exr",
+         &maps.normal,
+         {"R", "G", "B"},
+         ExrValues::Data,
+         "data: tangent-space normal, 0.5 n + 0.5"},
+        {"fibre.exr",
+         &maps.fibre,
+         {"R", "G", "B"},
+         ExrValues::Data,
+         "data: tangent-space fibre, 0.5 f + 0.5"},
+        {"growth.exr",
+         &maps.growth,
+         {"T", "knot"},
+         ExrValues::Data,
+         "data: growth time (years), knot share"},
     };
 }
 
@@ -120,7 +145,7 @@ std::vector<std::string> writeTextureSet(const UvMaps& maps, const SceneObject& 
     for (const MapFile& m : mapFiles(maps)) {
         const std::string& path = out.add(m.file);
         writeFloatExr(out.last(), path, maps.width, maps.height, m.channels, m.pixels->data(),
-                      metadata);
+                      metadata, RowBand{}, m.values);
     }
     // The mesh and a material pointing at the maps, so the bake opens textured.
     {

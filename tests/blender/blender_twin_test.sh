@@ -5,6 +5,7 @@
 # temporary user folder, imports the set (once from texture-set.json with the EXR maps, once
 # from the .glb) and renders the same camera, sun, sky and floor in Cycles. The renders must
 # agree within the thresholds below, and the coat's highlight must be in both, in one place.
+# Then the add-on's bake operator runs nenrin on a Blender cube (tests/blender/bake_operator.py).
 # Usage: blender_twin_test.sh NENRIN SOURCE_DIR. Exit 77 (skip) only without Blender.
 set -euo pipefail
 nenrin="$1"
@@ -41,4 +42,11 @@ for input in texture-set.json slab.glb; do
   $python "$src/tests/blender/compare_twin.py" "$work/nenrin.exr" "$work/blender.exr" \
     "$max_mean" "$max_rmse" "$max_shift" || status=1
 done
+
+echo "== Blender, the add-on's bake operator on a UV cube"
+mkdir "$work/operator"
+"$blender" -b --python-exit-code 1 --python "$src/tests/blender/bake_operator.py" -- \
+  "$nenrin" "$src/scenes/skeletons/conifer.json" "$work/operator" > "$work/operator.log" 2>&1 ||
+  { cat "$work/operator.log"; exit 1; }
+grep "^bake_operator:" "$work/operator.log"
 exit $status

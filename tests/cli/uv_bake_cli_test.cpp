@@ -51,6 +51,10 @@ TEST_F(UvBakeCliTest, WritesMapsMeshAndMaterial) {
     // Opaque: no alpha channel a tool could un-premultiply; coverage is its own mask.
     EXPECT_EQ(base->spec.nchannels, 3);
     EXPECT_EQ(coverage->spec.nchannels, 1);
+    // Data maps say so (colorInteropID "data"); the base colour is scene-linear colour.
+    EXPECT_EQ(coverage->spec.get_string_attribute("colorInteropID"), "data");
+    EXPECT_EQ(base->spec.get_string_attribute("colorInteropID"), "");
+    EXPECT_EQ(base->spec.get_string_attribute("oiio:ColorSpace"), "Linear");
     std::string mtl = readText(out_ / "cube.mtl");
     for (const char* key : {"map_Kd basecolor.exr", "map_Pr roughness.exr", "norm normal.exr",
                             "Ks 0.5 0.5 0.5", "Pc 0.6000", "Pcr 0.6708", "Pr 0.4690"})

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "util/input_error.h"
@@ -54,6 +57,28 @@ TEST(GltfMesh, RefusesBadFilesNamingThePlace) {
     expectError("bad/quad-view-past-buffer.gltf", "accessor 0");
     expectError("bad/README.md", "tinygltf cannot read");
     expectError("scenes/uv-cube.json", "");  // JSON, but not glTF
+}
+
+TEST(GltfMesh, ABufferThatIsADeviceIsRefused) {
+    // The quad with its buffer pointing at /dev/zero (which would read forever).
+    std::string text;
+    {
+        std::ifstream in(kData + "meshes/quad-nodes.gltf");
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    size_t at = text.find("data:application/octet-stream;base64,");
+    ASSERT_NE(at, std::string::npos);
+    size_t end = text.find('"', at);
+    text.replace(at, end - at, "../../../../../../../../../../dev/zero");
+    const std::string path = ::testing::TempDir() + "/nenrin-device-buffer.gltf";
+    std::ofstream(path) << text;
+    try {
+        loadGltfMesh(path);
+        ADD_FAILURE() << "a device buffer was read";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+    }
+    std::remove(path.c_str());
 }
 
 TEST(GltfMesh, RecognisesTheExtensions) {
