@@ -3,7 +3,8 @@
 # tests/data/scenes/blender-twin.json into a texture set (with --gltf) and renders the scene
 # itself; headless Blender, with the add-on installed by scripts/install-blender-addon into a
 # temporary user folder, imports the set (once from texture-set.json with the EXR maps, once
-# from the .glb) and renders the same camera, sun, sky and floor in Cycles. The renders must
+# from the .glb, and once without the add-on: Blender's own OBJ importer reading slab.mtl) and
+# renders the same camera, sun, sky and floor in Cycles. The renders must
 # agree within the thresholds below, and the coat's highlight must be in both, in one place.
 # Then the add-on's bake operator runs nenrin on a Blender cube (tests/blender/bake_operator.py).
 # Usage: blender_twin_test.sh NENRIN SOURCE_DIR. Exit 77 (skip) only without Blender.
@@ -34,8 +35,8 @@ max_mean=0.15      # |mean difference| / nenrin's mean
 max_rmse=0.20      # RMSE, scene-linear (nenrin's mean is 0.36)
 max_shift=15       # pixels between the coat highlights' centres (of 320 x 200)
 status=0
-for input in texture-set.json slab.glb; do
-  echo "== Blender, the set imported from $input"
+for input in texture-set.json slab.glb slab.obj; do
+  echo "== Blender, the set imported from $input$([[ $input == *.obj ]] && echo " by Blender's OBJ importer")"
   "$blender" -b --python-exit-code 1 --python "$src/tests/blender/render_twin.py" -- \
     "$work/set/$input" "$scene" "$work/blender.exr" > "$work/blender.log" 2>&1 ||
     { cat "$work/blender.log"; exit 1; }

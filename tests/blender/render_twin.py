@@ -1,6 +1,7 @@
 """Renders a nenrin scene's twin in Blender Cycles (run by tests/blender/blender_twin_test.sh):
 the wood object imported through the installed nenrin add-on (scripts/install-blender-addon)
-from its baked texture set (texture-set.json, or the set's .glb), the rest of the scene
+from its baked texture set (texture-set.json, or the set's .glb), or by Blender's own OBJ
+importer from NAME.obj and its .mtl (no add-on), the rest of the scene
 (camera, sun, uniform sky, diffuse boxes) rebuilt from the nenrin scene JSON.
 
 blender -b --python render_twin.py -- SET_FILE SCENE.json OUT.exr
@@ -29,10 +30,14 @@ def main(set_file, scene_path, out):
                addon_utils.check("nenrin_wood")):
         sys.exit("render_twin: the nenrin_wood add-on is not installed")
 
-    # The wood object, through the add-on: exactly what a user's import does.
-    result = bpy.ops.import_scene.nenrin_texture_set(filepath=set_file)
+    if set_file.endswith(".obj"):
+        # Blender's own OBJ importer and the .mtl alone: what a user without the add-on gets.
+        result = bpy.ops.wm.obj_import(filepath=set_file, forward_axis="NEGATIVE_Z", up_axis="Y")
+    else:
+        # The wood object, through the add-on: exactly what a user's import does.
+        result = bpy.ops.import_scene.nenrin_texture_set(filepath=set_file)
     if result != {"FINISHED"}:
-        sys.exit("render_twin: the add-on could not import the texture set")
+        sys.exit(f"render_twin: {set_file} could not be imported")
 
     s = bpy.context.scene
     materials = {m["name"]: m for m in scene["materials"]}
