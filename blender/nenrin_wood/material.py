@@ -163,7 +163,7 @@ def build_material(name, folder, description, use_png=False):
     tint.inputs["Fac"].default_value = 1.0
     tint.inputs["Color2"].default_value = (0.5 * finish["fibre_strength"],) * 3 + (1.0,)
     tint.location = (0, -200)
-    links.new(base.outputs["Color"], tint.inputs["Color1"])
+    links.new(dimmed.outputs["Color"], tint.inputs["Color1"])  # under the film too
     fibre = nodes.new("ShaderNodeBsdfAnisotropic")
     fibre.distribution = "GGX"
     fibre.location = (300, -300)
