@@ -65,10 +65,21 @@ def _numpy_bool_alias():
 
 def import_texture_set(filepath):
     """Imports the mesh of a set (texture-set.json, NAME.obj, NAME.gltf or NAME.glb) with its
-    material; returns the new object."""
+    material; returns the new object and whether it got the full nenrin material (a glTF
+    without its texture-set.json keeps what Blender's glTF importer made)."""
     folder = os.path.dirname(os.path.abspath(filepath))
-    description = read_description(folder)
     ext = os.path.splitext(filepath)[1].lower()
+    if ext in (".gltf", ".glb") and not os.path.exists(os.path.join(folder, DESCRIPTION)):
+        # A glTF passed on without its set: Blender's glTF importer alone (coat and normal
+        # map, but Blender 3 reads no anisotropy).
+        _numpy_bool_alias()
+        before = set(bpy.data.objects)
+        bpy.ops.import_scene.gltf(filepath=filepath)
+        created = [o for o in bpy.data.objects if o not in before and o.type == "MESH"]
+        if not created:
+            raise ValueError(f"{filepath}: no mesh was imported")
+        return created[0], False
+    description = read_description(folder)
     before = set(bpy.data.objects)
     if ext in (".gltf", ".glb"):
         _numpy_bool_alias()
@@ -82,7 +93,7 @@ def import_texture_set(filepath):
         raise ValueError(f"{filepath}: no mesh was imported")
     obj = created[0]
     apply_texture_set(obj, folder, use_png=ext in (".gltf", ".glb"))
-    return obj
+    return obj, True
 
 
 class NENRIN_OT_import_texture_set(bpy.types.Operator, ImportHelper):
@@ -96,12 +107,16 @@ class NENRIN_OT_import_texture_set(bpy.types.Operator, ImportHelper):
 
     def execute(self, context):
         try:
-            obj = import_texture_set(self.filepath)
+            obj, complete = import_texture_set(self.filepath)
         except (OSError, ValueError, KeyError) as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         context.view_layer.objects.active = obj
-        self.report({"INFO"}, f"nenrin: {obj.name} imported with its wood material")
+        if complete:
+            self.report({"INFO"}, f"nenrin: {obj.name} imported with its wood material")
+        else:
+            self.report({"WARNING"}, f"nenrin: {obj.name} imported with the glTF importer's "
+                        f"material: no {DESCRIPTION} next to the file, so no fibre anisotropy")
         return {"FINISHED"}
 
 
