@@ -53,7 +53,8 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
     const Material& material = scene.materials[object.material];
     if (object.shape != ShapeType::Mesh || !object.mesh || object.mesh->uvs.empty())
         throw InputError(scene.file, "object \"" + object.name + "\"",
-                         "a UV bake needs a mesh object with texture coordinates (vt in the OBJ)");
+                         "a UV bake needs a mesh object with texture coordinates (vt in an OBJ, "
+                         "TEXCOORD_0 in a glTF)");
     if (material.type != MaterialType::Wood)
         throw InputError(scene.file, "object \"" + object.name + "\"",
                          "a UV bake needs an object with a wood material");
