@@ -293,6 +293,17 @@ TriangleMesh loadGltfMesh(const std::string& path) {
                     "expected NORMAL and TEXCOORD_0 with as many elements as POSITION");
             std::vector<double> idx;
             if (prim.indices >= 0) {
+                // glTF indices are unsigned integers; a float accessor (found by fuzzing: an
+                // index of -2.9e36) is refused here, and every value is range-checked below.
+                if (prim.indices < int(model.accessors.size())) {
+                    const int type = model.accessors[prim.indices].componentType;
+                    if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                        throw InputError(
+                            path, fmt::format("{}, indices, accessor {}", where, prim.indices),
+                            "expected unsigned byte, short or int indices");
+                }
                 idx = reader.read(prim.indices, TINYGLTF_TYPE_SCALAR, where + ", indices");
             } else {
                 idx.resize(count);
@@ -317,7 +328,7 @@ TriangleMesh loadGltfMesh(const std::string& path) {
             for (size_t t = 0; t < idx.size(); t += 3) {
                 std::array<uint32_t, 3> tri;
                 for (int c = 0; c < 3; ++c) {
-                    if (idx[t + c] >= double(count))
+                    if (!(idx[t + c] >= 0 && idx[t + c] < double(count)))
                         throw InputError(path, where,
                                          fmt::format("index {} (triangle {}) is past the {} "
                                                      "vertices",

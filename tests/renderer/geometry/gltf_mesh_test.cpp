@@ -59,6 +59,21 @@ TEST(GltfMesh, RefusesBadFilesNamingThePlace) {
     expectError("scenes/uv-cube.json", "");  // JSON, but not glTF
 }
 
+TEST(GltfMesh, FloatIndicesAreRefused) {
+    // Found by fuzzing (fuzz/regressions/gltf_mesh): a baked cube whose index accessor was
+    // turned into floats, one of them -2.9e36 (once cast to an unsigned index: UB).
+    const std::string file =
+        std::string(NENRIN_SOURCE_DIR) + "/fuzz/regressions/gltf_mesh/float-indices.glb";
+    try {
+        loadGltfMesh(file);
+        ADD_FAILURE() << "float indices were read";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("expected unsigned byte, short or int indices"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(GltfMesh, ABufferThatIsADeviceIsRefused) {
     // The quad with its buffer pointing at /dev/zero (which would read forever).
     std::string text;
