@@ -39,13 +39,6 @@ std::string ocioVariable() {
     return v ? v : "";
 }
 
-// OCIO's messages (YAML errors in particular) may span lines; InputError prints one line.
-std::string oneLine(std::string s) {
-    std::replace(s.begin(), s.end(), '\n', ' ');
-    while (!s.empty() && s.back() == ' ') s.pop_back();
-    return s;
-}
-
 DisplayPipeline makePipeline(const OCIO::ConstConfigRcPtr& config, std::string display,
                              std::string view) {
     auto processor = config->getProcessor(OCIO::ROLE_SCENE_LINEAR, display.c_str(), view.c_str(),

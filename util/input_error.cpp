@@ -1,5 +1,7 @@
 #include "util/input_error.h"
 
+#include <algorithm>
+
 namespace nenrin {
 
 static std::string compose(const std::string& file, const std::string& where,
@@ -14,5 +16,13 @@ InputError::InputError(std::string file, std::string where, std::string message)
       file_(std::move(file)),
       where_(std::move(where)),
       message_(std::move(message)) {}
+
+std::string oneLine(std::string s) {
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    s.erase(std::unique(s.begin(), s.end(), [](char a, char b) { return a == ' ' && b == ' '; }),
+            s.end());
+    while (!s.empty() && s.back() == ' ') s.pop_back();
+    return s;
+}
 
 }  // namespace nenrin

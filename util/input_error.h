@@ -20,4 +20,8 @@ private:
     std::string file_, where_, message_;
 };
 
+/// A library's message (OCIO's YAML errors, tinyobjloader's, tinygltf's) on one line: line
+/// breaks become spaces, runs of spaces one, no trailing space. InputError prints one line.
+std::string oneLine(std::string message);
+
 }  // namespace nenrin

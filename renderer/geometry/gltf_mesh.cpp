@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "util/atomic_output.h"
 #include "util/input_error.h"
 #include "util/input_file.h"
 
@@ -201,18 +202,10 @@ bool refuseWriting(std::string* err, const std::string&, const std::vector<unsig
     return false;
 }
 
-std::string oneLine(std::string s) {
-    std::replace(s.begin(), s.end(), '\n', ' ');
-    while (!s.empty() && s.back() == ' ') s.pop_back();
-    return s;
-}
-
 }  // namespace
 
 bool isGltfPath(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
+    const std::string ext = lowerExtension(path);
     return ext == ".gltf" || ext == ".glb";
 }
 

@@ -70,14 +70,6 @@ size_t lineOfOffset(std::string_view text, size_t offset) {
     return line;
 }
 
-std::string oneLine(std::string s) {
-    std::replace(s.begin(), s.end(), '\n', ' ');
-    s.erase(std::unique(s.begin(), s.end(), [](char a, char b) { return a == ' ' && b == ' '; }),
-            s.end());
-    while (!s.empty() && s.back() == ' ') s.pop_back();
-    return s;
-}
-
 /// The checks tinyobjloader does not make: it reads an unparseable number (`nan`, `1,5`) as 0,
 /// drops faces it cannot use with at most a warning, and keeps no line numbers. The scan
 /// mirrors its line and keyword rules, throws for what it would let through, and records each

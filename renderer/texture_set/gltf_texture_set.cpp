@@ -297,42 +297,41 @@ std::vector<std::string> writeGltfTextureSet(const UvMaps& maps, const SceneObje
     }
 
     tinygltf::TinyGLTF writer;
-    // .gltf + .bin: the images by name, the buffer as its own file.
+    tinygltf::Model model = buildModel(maps, object, metadata);
+    const std::vector<unsigned char>& mesh = model.buffers[0].data;
+    // .gltf + .bin: the images by name, the buffer as its own file. tinygltf's stream writer
+    // would embed the buffer as base64 (and its file writer names and writes the .bin itself,
+    // outside the temporary names): the JSON is serialised without buffers, and the one buffer
+    // entry, pointing at the .bin, added here.
     {
-        tinygltf::Model model = buildModel(maps, object, metadata);
+        const std::string& binPath = out.add(stem + ".bin");
+        std::ofstream bin(binPath, std::ios::binary);
+        bin.write(reinterpret_cast<const char*>(mesh.data()), std::streamsize(mesh.size()));
+        bin.flush();
+        if (!bin) throw InputError(out.last(), "output", "cannot write it (disk full?)");
+    }
+    {
+        tinygltf::Model named = model;
+        named.buffers.clear();
         for (const Png& png : pngs) {
             tinygltf::Image image;
             image.uri = png.file;
-            model.images.push_back(image);
+            named.images.push_back(image);
         }
-        const std::vector<unsigned char>& data = model.buffers[0].data;
-        const std::string& binPath = out.add(stem + ".bin");
-        {
-            std::ofstream bin(binPath, std::ios::binary);
-            bin.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size()));
-            bin.flush();
-            if (!bin) throw InputError(out.last(), "output", "cannot write it (disk full?)");
-        }
-        // tinygltf's stream writer would embed the buffer as base64 (and its file writer names
-        // and writes the .bin itself, outside the temporary names): the JSON is serialised
-        // without buffers, and the one buffer entry, pointing at the .bin, added here.
         const std::string& gltfPath = out.add(stem + ".gltf");
-        tinygltf::Model jsonModel = model;
-        jsonModel.buffers.clear();
         std::ostringstream json;
-        if (!writer.WriteGltfSceneToStream(&jsonModel, json, true, false))
+        if (!writer.WriteGltfSceneToStream(&named, json, true, false))
             throw InputError(out.last(), "output", "tinygltf cannot serialise the model");
         nlohmann::json doc = nlohmann::json::parse(json.str());
         doc["buffers"] =
-            nlohmann::json::array({{{"uri", stem + ".bin"}, {"byteLength", data.size()}}});
+            nlohmann::json::array({{{"uri", stem + ".bin"}, {"byteLength", mesh.size()}}});
         std::ofstream file(gltfPath);
         file << doc.dump(2) << "\n";
         file.flush();
         if (!file) throw InputError(out.last(), "output", "cannot write it (disk full?)");
     }
-    // .glb: one file, the images in buffer views of the binary chunk.
+    // .glb: one file, the images in buffer views of the binary chunk after the mesh.
     {
-        tinygltf::Model model = buildModel(maps, object, metadata);
         std::vector<unsigned char>& data = model.buffers[0].data;
         for (size_t i = 0; i < pngs.size(); ++i) {
             std::vector<unsigned char> png = fileBytes(pngTemporary[i], pngs[i].file);

@@ -56,7 +56,7 @@ TEST(GltfMesh, RefusesBadFilesNamingThePlace) {
     expectError("bad/quad-index-out-of-range.gltf", "index 9 (triangle 0) is past the 4 vertices");
     expectError("bad/quad-view-past-buffer.gltf", "accessor 0");
     expectError("bad/README.md", "tinygltf cannot read");
-    expectError("scenes/uv-cube.json", "");  // JSON, but not glTF
+    expectError("scenes/uv-cube.json", "tinygltf cannot read the file");  // JSON, not glTF
 }
 
 TEST(GltfMesh, FloatIndicesAreRefused) {
