@@ -106,7 +106,7 @@ ChainTrees::BoxQuery ChainTrees::boxQuery(const Vec3& lo, const Vec3& hi,
     return q;
 }
 
-bool ChainTrees::mayBeNearest(uint32_t segmentId, const BoxQuery& box) const {
+inline bool ChainTrees::mayBeNearest(uint32_t segmentId, const BoxQuery& box) const {
     // tRaw is linear in P: over the box it spans its centre value +- a half-width. The nearest
     // point of a chain to P is inside a segment (P in its slab, 0 <= tRaw <= 1) or a joint; at
     // the joint ending segment s, tRaw_s >= 1 and the next segment's tRaw <= 0 (else a point
@@ -165,6 +165,15 @@ void ChainTrees::candidates(uint32_t chain, const Vec3& lo, const Vec3& hi,
         stack[top++] = n.right;
         stack[top++] = n.left;
     }
+}
+
+void ChainTrees::narrow(std::span<const uint32_t> segments, const Vec3& lo, const Vec3& hi,
+                        std::vector<uint32_t>& out) const {
+    BoxQuery box;
+    box.centre = (lo + hi) * 0.5;
+    box.half = (hi - lo) * 0.5;
+    for (const uint32_t s : segments)
+        if (mayBeNearest(s, box)) out.push_back(s);
 }
 
 ChainTrees::Nearest ChainTrees::search(uint32_t chain, const Vec3& p, double maxDistance2) const {

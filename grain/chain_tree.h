@@ -43,6 +43,12 @@ public:
     void candidates(uint32_t chain, const Vec3& lo, const Vec3& hi, uint32_t nearestToCentre,
                     std::vector<uint32_t>& out) const;
 
+    /// Appends, in their order, those of `segments` (one chain's) that may be the chain's
+    /// nearest for some point of the box [lo, hi]: the slab test of candidates() alone, for
+    /// narrowing a tile's candidates to a part of the tile.
+    void narrow(std::span<const uint32_t> segments, const Vec3& lo, const Vec3& hi,
+                std::vector<uint32_t>& out) const;
+
     /// The same two by plain loops over the chain.
     Nearest nearestByScan(uint32_t chain, const Vec3& p, double maxDistance2) const;
     void candidatesByScan(uint32_t chain, const Vec3& lo, const Vec3& hi, uint32_t nearestToCentre,

@@ -10,11 +10,13 @@
 
 namespace nenrin {
 
-struct FieldSegment {
+/// Aligned to cache lines, with what project() reads (a, ab, 1 / L^2) in the first: the
+/// nearest-segment scans touch one line per segment.
+struct alignas(64) FieldSegment {
     Vec3 a, ab;             ///< start and (end - start)
-    Vec3 axis;              ///< unit direction
     double invLength2 = 0;  ///< 1 / |ab|^2
     double length = 0;
+    Vec3 axis;                          ///< unit direction
     double birthA = 0, birthDelta = 0;  ///< birth time at a, and at b minus at a
     double gamma = 1, deathTime = kNeverDies, diebackExponent = 0;
     double inverseSpeed = 0;  ///< 1 / (Sb gamma), years per metre (set by GrowthField)

@@ -21,6 +21,8 @@ constexpr size_t kChunk = 64;
 /// Up to this many kept segments of a chain, a point measures them in double one by one: the
 /// vectorised float pass only pays beyond.
 constexpr uint32_t kDirectScan = 12;
+/// A chain meeting a chunk in more segments than this gets a narrower list per quarter.
+constexpr size_t kQuarterAbove = 3;
 
 /// A lower bound of dieback(t, deathTime, eps) without pow(): (t / Tlim)^eps >= (t / Tlim)^n
 /// for n = floor(eps) since t / Tlim >= 1 there.
@@ -228,7 +230,9 @@ void GrowthField::describeKnot(const GrowthScratch::ChainTerm& t, const Vec3& po
     // x = Tc / sin(alpha), i.e. Tc = T1 sin(alpha) w^(1/p); past the branch's death that time
     // is a dieback'd one, so undo eq. 10 to get back to the time the growth terms give.
     const FieldSegment& s = segments_[t.segment];
-    double edge = trunkTime * t.sinAlpha * std::pow(t.weight, 1 / params_.junction.p);
+    // (w^(1/p) is exactly 1 for w = 1, the usual weight: no pow() for it.)
+    const double root = t.weight == 1 ? 1.0 : std::pow(t.weight, 1 / params_.junction.p);
+    double edge = trunkTime * t.sinAlpha * root;
     if (edge > s.deathTime)
         edge = s.deathTime * std::pow(edge / s.deathTime, 1 / (1 + s.diebackExponent));
     g.knotDied = t.dead > 0.5;
@@ -266,6 +270,47 @@ double GrowthField::branchSearchRadius(double trunkTime) const {
            ageUnwarp(params_.junction.reach * std::max(trunkTime, 0.0), params_.age.delta);
 }
 
+bool GrowthField::chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi, const Vec3& centre,
+                                 double radius, double maxTrunkTime, ChainReach& out) const {
+    const Box box{lo, hi};
+    const double reachTrunkTime = params_.junction.reach * maxTrunkTime;
+    // 1. Born too late to come in under reach x T1 anywhere (sin(alpha) <= 1).
+    const ChainFrame& frame = chainFrames_[chain];
+    if (frame.birthBound >= reachTrunkTime) return false;
+    // 2. The whole box behind the plane F of the branch: sin(alpha) <= 0 everywhere.
+    bool anyAhead = false;
+    for (int corner = 0; corner < 8 && !anyAhead; ++corner)
+        anyAhead = dot(box.corner(corner) - frame.start, frame.direction) > 0;
+    if (!anyAhead) return false;
+    // The largest sin(alpha) over the ball, seen from Q: the blend compares T_c / sin(alpha)
+    // with T1. With c the cosine of the angle between QC and the branch and s the sine of
+    // the ball's half-angle, it is cos(angle - spread), or 1 once the ball reaches the
+    // branch's axis.
+    const Vec3 toCentre = centre - frame.start;
+    const double dc = length(toCentre);
+    double sinAlphaMax = 1;
+    if (dc > radius) {
+        const double c = std::clamp(dot(toCentre, frame.direction) / dc, -1.0, 1.0);
+        const double s = std::min(1.0, radius / dc * (1 + 1e-9) + 1e-12);
+        const double cosSpread = std::sqrt(std::max(0.0, 1 - s * s));
+        if (c < cosSpread)
+            sinAlphaMax = std::min(
+                1.0,
+                (c * cosSpread + std::sqrt(std::max(0.0, 1 - c * c)) * s) * (1 + 1e-12) + 1e-12);
+    }
+    out.reachTime = reachTrunkTime * sinAlphaMax;
+    // 3. The chain's path time over the whole ball is past reach x T1 x sin(alpha) of every
+    //    point: from births alone, then from the chain's distance to the ball (looked up only
+    //    as far as it could matter).
+    if (frame.birthBound >= out.reachTime) return false;
+    const double reachable = frame.gammaBound * speedBound_ *
+                                 ageUnwarp(out.reachTime - frame.birthBound, params_.age.delta) +
+                             radius;
+    const double limit = reachable * (1 + 1e-9) + 1e-9;
+    out.nearest = chainTrees_.nearest(chain, centre, limit * limit);
+    return out.nearest.segment != kNone;
+}
+
 void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
                                     double halfDiagonal, double maxTrunkTime) const {
     // Keep the chains near the batch that can matter for some point of the tile; every test
@@ -274,46 +319,15 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
     const Vec3 centre = box.centre();
     auto& chains = scratch.tileChains;
     chains.clear();
-    const double reachTrunkTime = params_.junction.reach * maxTrunkTime;
     auto& kept = scratch.keptSegments;
     kept.reset(centre);
     for (const uint32_t chain : scratch.candidateChains) {
-        // 1. Born too late to come in under reach x T1 anywhere (sin(alpha) <= 1).
+        // 1-3: births, plane F and distance, over the chunk's bounding ball.
+        ChainReach reach;
+        if (!chainMayMatter(chain, lo, hi, centre, halfDiagonal, maxTrunkTime, reach)) continue;
         const ChainFrame& frame = chainFrames_[chain];
-        if (frame.birthBound >= reachTrunkTime) continue;
-        // 2. The whole box behind the plane F of the branch: sin(alpha) <= 0 everywhere.
-        bool anyAhead = false;
-        for (int corner = 0; corner < 8 && !anyAhead; ++corner)
-            anyAhead = dot(box.corner(corner) - frame.start, frame.direction) > 0;
-        if (!anyAhead) continue;
-        // The largest sin(alpha) over the box (over its bounding ball, seen from Q): the
-        // blend compares T_c / sin(alpha) with T1. With c the cosine of the angle between QC
-        // and the branch and s the sine of the ball's half-angle, it is cos(angle - spread),
-        // or 1 once the ball reaches the branch's axis.
-        const Vec3 toCentre = centre - frame.start;
-        const double dc = length(toCentre);
-        double sinAlphaMax = 1;
-        if (dc > halfDiagonal) {
-            const double c = std::clamp(dot(toCentre, frame.direction) / dc, -1.0, 1.0);
-            const double s = std::min(1.0, halfDiagonal / dc * (1 + 1e-9) + 1e-12);
-            const double cosSpread = std::sqrt(std::max(0.0, 1 - s * s));
-            if (c < cosSpread)
-                sinAlphaMax = std::min(
-                    1.0, (c * cosSpread + std::sqrt(std::max(0.0, 1 - c * c)) * s) * (1 + 1e-12) +
-                             1e-12);
-        }
-        const double reachTime = reachTrunkTime * sinAlphaMax;
-        // 3. The chain's path time over the whole box is past reach x T1 x sin(alpha) of every
-        //    point: from births alone, then from the chain's distance to the box (looked up
-        //    only as far as it could matter), then with the bounds of the kept segments.
-        if (frame.birthBound >= reachTime) continue;
-        const double reachable = frame.gammaBound * speedBound_ *
-                                     ageUnwarp(reachTime - frame.birthBound, params_.age.delta) +
-                                 halfDiagonal;
-        const double limit = reachable * (1 + 1e-9) + 1e-9;
-        const ChainTrees::Nearest nearestToCentre =
-            chainTrees_.nearest(chain, centre, limit * limit);
-        if (nearestToCentre.segment == kNone) continue;
+        const double reachTime = reach.reachTime;
+        const ChainTrees::Nearest& nearestToCentre = reach.nearest;
         const double nearest = std::sqrt(nearestToCentre.distance2);
         // 4. Segments that cannot be any point's nearest (on a straight run, all but the few
         //    the box projects onto).
@@ -324,27 +338,47 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
         tc.chain = chain;
         tc.start = frame.start;
         tc.direction = frame.direction;
-        tc.begin = kept.size();
         Box bounds;
         tc.gamma = 0;
         tc.birthBound = kInf;
         for (const uint32_t id : ids) {
             const FieldSegment& s = segments_[id];
-            kept.push(s.a, s.ab, s.invLength2, id);
             bounds.add(s.a);
             bounds.add(s.a + s.ab);
             tc.gamma = std::max(tc.gamma, s.gammaBound);
             tc.birthBound = std::min(tc.birthBound, s.birthBound);
         }
-        tc.end = kept.size();
         tc.lower = bounds.lo;
         tc.upper = bounds.hi;
         const double closest = std::max(0.0, nearest - halfDiagonal) * (1 - 1e-9);
-        if (tc.end == tc.begin ||
+        if (ids.empty() ||
             tc.birthBound + ageWarp(closest / (tc.gamma * speedBound_), params_.age.delta) >=
-                reachTime) {
-            kept.truncate(tc.begin);
+                reachTime)
             continue;
+        // 5. Per quarter of the chunk, the segments that can be nearest for its points (worth
+        //    it once a chain meets the tile in more than a few).
+        const uint32_t first = kept.size();
+        if (ids.size() <= kQuarterAbove) {
+            for (const uint32_t id : ids)
+                kept.push(segments_[id].a, segments_[id].ab, segments_[id].invLength2, id);
+            tc.begin.fill(first);
+            tc.end.fill(kept.size());
+        } else {
+            if (!scratch.quartersSplit)
+                scratch.quarters.split(scratch.quartersOf, scratch.chunkLo, scratch.chunkHi);
+            scratch.quartersSplit = true;
+            const PointQuarters& quarters = scratch.quarters;
+            for (int q = 0; q < 4; ++q) {
+                tc.begin[q] = kept.size();
+                if (quarters.used[q]) {
+                    auto& narrowed = scratch.quarterSegments;
+                    narrowed.clear();
+                    chainTrees_.narrow(ids, quarters.lo[q], quarters.hi[q], narrowed);
+                    for (const uint32_t id : narrowed)
+                        kept.push(segments_[id].a, segments_[id].ab, segments_[id].invLength2, id);
+                }
+                tc.end[q] = kept.size();
+            }
         }
         chains.push_back(tc);
     }
@@ -474,12 +508,24 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     if (chains.empty()) return;
     std::sort(chains.begin(), chains.end());
     chains.erase(std::unique(chains.begin(), chains.end()), chains.end());
+    // The same tests once for the whole batch, over a ball that holds every chunk's (twice
+    // the half-diagonal: a chunk's centre lies within one of the batch's, its half-diagonal
+    // is at most the batch's): what fails here fails for every chunk.
+    std::erase_if(chains, [&](uint32_t chain) {
+        ChainReach reach;
+        return !chainMayMatter(chain, batch.lo, batch.hi, centre, 2 * halfDiagonal, maxTrunkTime,
+                               reach);
+    });
     for (size_t c0 = 0; c0 < n; c0 += kChunk) {
         const size_t c1 = std::min(n, c0 + kChunk);
         const Box chunk = boxOf({pts.data() + c0, c1 - c0});
         double chunkTrunkTime = 0;
         for (size_t i = c0; i < c1; ++i)
             chunkTrunkTime = std::max(chunkTrunkTime, out[i].trunkTime);
+        scratch.quartersOf = {pts.data() + c0, c1 - c0};
+        scratch.chunkLo = chunk.lo;
+        scratch.chunkHi = chunk.hi;
+        scratch.quartersSplit = false;
         prepareTileChains(scratch, chunk.lo, chunk.hi, chunk.halfDiagonal(), chunkTrunkTime);
         evaluateBranches({pts.data() + c0, c1 - c0}, out.subspan(c0, c1 - c0), scratch);
     }
@@ -497,6 +543,7 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
         auto& terms = scratch.terms;
         terms.clear();
         if (scratch.tileChains.empty()) continue;
+        const uint8_t quarter = scratch.quartersSplit ? scratch.quarters.quarterOf[i] : 0;
         for (const auto& tc : scratch.tileChains) {
             // alpha: angle between QP and the plane F through the branch start Q,
             // perpendicular to the branch (eq. 5). Behind F the branch does not count.
@@ -519,15 +566,16 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
             // smallest double distance, ties to the first (smaller id).
             auto& kept = scratch.keptSegments;
             Best best;
-            if (tc.end - tc.begin <= kDirectScan) {
-                for (uint32_t k = tc.begin; k < tc.end; ++k) {
+            const uint32_t begin = tc.begin[quarter], end = tc.end[quarter];
+            if (end - begin <= kDirectScan) {
+                for (uint32_t k = begin; k < end; ++k) {
                     const double d2 = project(segments_[kept.id(k)], pt).distance2;
                     if (d2 < best.distance2) best = {static_cast<int32_t>(kept.id(k)), d2};
                 }
             } else {
-                const SegmentBatch::Measured measured = kept.measureFrom(pt, tc.begin, tc.end);
+                const SegmentBatch::Measured measured = kept.measureFrom(pt, begin, end);
                 const uint32_t nearest =
-                    kept.id(kept.nearest(tc.begin, tc.end, measured, [&](uint32_t k) {
+                    kept.id(kept.nearest(begin, end, measured, [&](uint32_t k) {
                         return project(segments_[kept.id(k)], pt).distance2;
                     }));
                 best = {static_cast<int32_t>(nearest), project(segments_[nearest], pt).distance2};

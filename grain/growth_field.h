@@ -16,6 +16,7 @@
 /// point never depends on the batch it came in: candidate lists are supersets, sorted by id,
 /// filtered per point, so results are bitwise identical for any tiling and thread count.
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -25,6 +26,7 @@
 #include "grain/grain_params.h"
 #include "grain/growth_terms.h"
 #include "grain/latewood_timing.h"
+#include "grain/point_quarters.h"
 #include "grain/radial_growth.h"
 #include "grain/segment_batch.h"
 #include "skeleton/skeleton_index.h"
@@ -63,7 +65,8 @@ struct GrowthScratch {
     /// A branch chain near the current tile, with the segments that may matter for it.
     struct TileChain {
         uint32_t chain;
-        uint32_t begin, end;    ///< range in keptSegments
+        /// Per quarter of the chunk: the range in keptSegments that may matter for its points.
+        std::array<uint32_t, 4> begin, end;
         Vec3 start, direction;  ///< Q and the normal of plane F (eq. 5)
         double gamma;           ///< largest gamma of the kept segments and their neighbours
         double birthBound;      ///< smallest node birth time they can use
@@ -73,6 +76,12 @@ struct GrowthScratch {
     SegmentBatch keptSegments;
     std::vector<uint32_t> candidateChains;  ///< chains with a segment near the batch, sorted
     std::vector<uint32_t> chainSegments;    ///< one chain's segments near the tile
+    std::vector<uint32_t> quarterSegments;  ///< those that may matter for one quarter
+    /// The current chunk's points and their quarters, split when a chain first needs them.
+    std::span<const Vec3> quartersOf;
+    Vec3 chunkLo, chunkHi;
+    bool quartersSplit = false;
+    PointQuarters quarters;
     std::vector<double> centreDistances;
     struct ChainTerm {
         uint32_t chain;
@@ -136,6 +145,15 @@ private:
     bool insideSlabOnly(uint32_t segment, const Vec3& lo, const Vec3& hi) const;
     void evaluateBranches(std::span<const Vec3> points, std::span<GrowthSample> out,
                           GrowthScratch& scratch) const;
+    /// Tests 1-3 of prepareTileChains for one chain: false if it cannot matter for any point
+    /// of the ball (centre, radius) around the box [lo, hi], given the largest trunk time
+    /// there; else the reach time of the ball and the chain's segment nearest to its centre.
+    struct ChainReach {
+        double reachTime;
+        ChainTrees::Nearest nearest;
+    };
+    bool chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi, const Vec3& centre,
+                        double radius, double maxTrunkTime, ChainReach& out) const;
     void prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
                            double halfDiagonal, double maxTrunkTime) const;
 

@@ -170,45 +170,49 @@ TEST(GrowthField, ContinuousAcrossTheJunctionPlaneOfEquation5) {
 
 TEST(GrowthField, BatchAndSingleEvaluationAreBitwiseEqual) {
     // Batching must never change an answer: one point at a time, a 32 x 32 batch listed row by
-    // row, and the same batch listed as 8 x 8 chunks give the same bits, with either index.
-    SyntheticTreeOptions o;
-    o.totalSegments = 6000;
-    o.segmentsPerBranch = 25;
-    Skeleton sk = makeSyntheticTree(o);
-    SkeletonIndex embree(sk, IndexBackend::Embree), brute(sk, IndexBackend::BruteForce);
-    GrainParams g = plainGrain();
-    g.sway.amplitude = 0.002;
-    g.sway.radialJitter = 0.05;
-    g.direction.strength = 0.1;
-    GrowthField fe(embree, g), fb(brute, g);
-    int knotted = 0;
-    for (double z : {4.0, 9.5, 15.0}) {
-        std::vector<Vec3> rows, chunks;
-        for (int j = 0; j < 32; ++j)
-            for (int i = 0; i < 32; ++i)
-                rows.push_back({-0.12 + 0.0075 * i, -0.12 + 0.0075 * j, z});
-        for (int cj = 0; cj < 32; cj += 8)
-            for (int ci = 0; ci < 32; ci += 8)
-                for (int j = cj; j < cj + 8; ++j)
-                    for (int i = ci; i < ci + 8; ++i) chunks.push_back(rows[j * 32 + i]);
-        std::vector<GrowthSample> byRows(rows.size()), byChunks(chunks.size());
-        GrowthScratch scratch;
-        fe.evaluateBatch(rows, byRows, scratch);
-        fb.evaluateBatch(chunks, byChunks, scratch);
-        for (size_t c = 0; c < chunks.size(); ++c) {
-            size_t i = static_cast<size_t>(std::lround((chunks[c].y + 0.12) / 0.0075) * 32 +
-                                           std::lround((chunks[c].x + 0.12) / 0.0075));
-            ASSERT_EQ(byChunks[c].T, byRows[i].T) << "z " << z << " point " << i;
-            ASSERT_EQ(byChunks[c].knot, byRows[i].knot);
+    // row (chunks of two long rows), and the same batch listed as 8 x 8 chunks give the same
+    // bits, with either index. Branches of 25 segments, and of 400 (a chunk then meets a branch
+    // in many segments, and each quarter of it gets its own narrower list).
+    for (size_t perBranch : {25, 400}) {
+        SyntheticTreeOptions o;
+        o.segmentsPerBranch = perBranch;
+        o.totalSegments = 200 + 240 * perBranch;
+        Skeleton sk = makeSyntheticTree(o);
+        SkeletonIndex embree(sk, IndexBackend::Embree), brute(sk, IndexBackend::BruteForce);
+        GrainParams g = plainGrain();
+        g.sway.amplitude = 0.002;
+        g.sway.radialJitter = 0.05;
+        g.direction.strength = 0.1;
+        GrowthField fe(embree, g), fb(brute, g);
+        int knotted = 0;
+        for (double z : {4.0, 9.5, 15.0}) {
+            std::vector<Vec3> rows, chunks;
+            for (int j = 0; j < 32; ++j)
+                for (int i = 0; i < 32; ++i)
+                    rows.push_back({-0.12 + 0.0075 * i, -0.12 + 0.0075 * j, z});
+            for (int cj = 0; cj < 32; cj += 8)
+                for (int ci = 0; ci < 32; ci += 8)
+                    for (int j = cj; j < cj + 8; ++j)
+                        for (int i = ci; i < ci + 8; ++i) chunks.push_back(rows[j * 32 + i]);
+            std::vector<GrowthSample> byRows(rows.size()), byChunks(chunks.size());
+            GrowthScratch scratch;
+            fe.evaluateBatch(rows, byRows, scratch);
+            fb.evaluateBatch(chunks, byChunks, scratch);
+            for (size_t c = 0; c < chunks.size(); ++c) {
+                size_t i = static_cast<size_t>(std::lround((chunks[c].y + 0.12) / 0.0075) * 32 +
+                                               std::lround((chunks[c].x + 0.12) / 0.0075));
+                ASSERT_EQ(byChunks[c].T, byRows[i].T) << "z " << z << " point " << i;
+                ASSERT_EQ(byChunks[c].knot, byRows[i].knot);
+            }
+            for (size_t i = 0; i < rows.size(); i += 7) {
+                GrowthSample single = fe.evaluate(rows[i]);
+                ASSERT_EQ(single.T, byRows[i].T) << "z " << z << " point " << i;
+                ASSERT_EQ(single.knot, byRows[i].knot);
+                knotted += single.knot > 0;
+            }
         }
-        for (size_t i = 0; i < rows.size(); i += 7) {
-            GrowthSample single = fe.evaluate(rows[i]);
-            ASSERT_EQ(single.T, byRows[i].T) << "z " << z << " point " << i;
-            ASSERT_EQ(single.knot, byRows[i].knot);
-            knotted += single.knot > 0;
-        }
+        EXPECT_GT(knotted, 10) << perBranch;  // the batches do meet branches
     }
-    EXPECT_GT(knotted, 10);  // the batches do meet branches
 }
 
 TEST(GrowthField, BundledConiferHasLiveAndDeadKnots) {
