@@ -18,6 +18,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Points per chunk: the unit of candidate pruning inside a batch (an 8 x 8 tile).
 constexpr size_t kChunk = 64;
+/// Points per group of chunks: branch chains are culled for each before its chunks.
+constexpr size_t kGroup = 4 * kChunk;
 /// Up to this many kept segments of a chain, a point measures them in double one by one: the
 /// vectorised float pass only pays beyond.
 constexpr uint32_t kDirectScan = 12;
@@ -311,8 +313,9 @@ bool GrowthField::chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi,
     return out.nearest.segment != kNone;
 }
 
-void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
-                                    double halfDiagonal, double maxTrunkTime) const {
+void GrowthField::prepareTileChains(GrowthScratch& scratch, std::span<const uint32_t> candidates,
+                                    const Vec3& lo, const Vec3& hi, double halfDiagonal,
+                                    double maxTrunkTime) const {
     // Keep the chains near the batch that can matter for some point of the tile; every test
     // here is exact (a bound over the whole box), so results do not depend on tiling.
     const Box box{lo, hi};
@@ -321,7 +324,7 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, const Vec3& lo, cons
     chains.clear();
     auto& kept = scratch.keptSegments;
     kept.reset(centre);
-    for (const uint32_t chain : scratch.candidateChains) {
+    for (const uint32_t chain : candidates) {
         // 1-3: births, plane F and distance, over the chunk's bounding ball.
         ChainReach reach;
         if (!chainMayMatter(chain, lo, hi, centre, halfDiagonal, maxTrunkTime, reach)) continue;
@@ -516,18 +519,39 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         return !chainMayMatter(chain, batch.lo, batch.hi, centre, 2 * halfDiagonal, maxTrunkTime,
                                reach);
     });
-    for (size_t c0 = 0; c0 < n; c0 += kChunk) {
-        const size_t c1 = std::min(n, c0 + kChunk);
-        const Box chunk = boxOf({pts.data() + c0, c1 - c0});
-        double chunkTrunkTime = 0;
-        for (size_t i = c0; i < c1; ++i)
-            chunkTrunkTime = std::max(chunkTrunkTime, out[i].trunkTime);
-        scratch.quartersOf = {pts.data() + c0, c1 - c0};
-        scratch.chunkLo = chunk.lo;
-        scratch.chunkHi = chunk.hi;
-        scratch.quartersSplit = false;
-        prepareTileChains(scratch, chunk.lo, chunk.hi, chunk.halfDiagonal(), chunkTrunkTime);
-        evaluateBranches({pts.data() + c0, c1 - c0}, out.subspan(c0, c1 - c0), scratch);
+    // And again per group of chunks, whose trunk times vary less than the batch's.
+    for (size_t g0 = 0; g0 < n; g0 += kGroup) {
+        const size_t g1 = std::min(n, g0 + kGroup);
+        std::span<const uint32_t> groupChains = chains;
+        if (n > kGroup) {
+            const Box group = boxOf({pts.data() + g0, g1 - g0});
+            double groupTrunkTime = 0;
+            for (size_t i = g0; i < g1; ++i)
+                groupTrunkTime = std::max(groupTrunkTime, out[i].trunkTime);
+            auto& culled = scratch.groupChains;
+            culled.clear();
+            for (const uint32_t chain : chains) {
+                ChainReach reach;
+                if (chainMayMatter(chain, group.lo, group.hi, group.centre(),
+                                   2 * group.halfDiagonal(), groupTrunkTime, reach))
+                    culled.push_back(chain);
+            }
+            groupChains = culled;
+        }
+        for (size_t c0 = g0; c0 < g1; c0 += kChunk) {
+            const size_t c1 = std::min(g1, c0 + kChunk);
+            const Box chunk = boxOf({pts.data() + c0, c1 - c0});
+            double chunkTrunkTime = 0;
+            for (size_t i = c0; i < c1; ++i)
+                chunkTrunkTime = std::max(chunkTrunkTime, out[i].trunkTime);
+            scratch.quartersOf = {pts.data() + c0, c1 - c0};
+            scratch.chunkLo = chunk.lo;
+            scratch.chunkHi = chunk.hi;
+            scratch.quartersSplit = false;
+            prepareTileChains(scratch, groupChains, chunk.lo, chunk.hi, chunk.halfDiagonal(),
+                              chunkTrunkTime);
+            evaluateBranches({pts.data() + c0, c1 - c0}, out.subspan(c0, c1 - c0), scratch);
+        }
     }
 }
 

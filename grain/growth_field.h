@@ -75,6 +75,7 @@ struct GrowthScratch {
     std::vector<TileChain> tileChains;
     SegmentBatch keptSegments;
     std::vector<uint32_t> candidateChains;  ///< chains with a segment near the batch, sorted
+    std::vector<uint32_t> groupChains;      ///< those that may matter for a group of chunks
     std::vector<uint32_t> chainSegments;    ///< one chain's segments near the tile
     std::vector<uint32_t> quarterSegments;  ///< those that may matter for one quarter
     /// The current chunk's points and their quarters, split when a chain first needs them.
@@ -154,8 +155,9 @@ private:
     };
     bool chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi, const Vec3& centre,
                         double radius, double maxTrunkTime, ChainReach& out) const;
-    void prepareTileChains(GrowthScratch& scratch, const Vec3& lo, const Vec3& hi,
-                           double halfDiagonal, double maxTrunkTime) const;
+    void prepareTileChains(GrowthScratch& scratch, std::span<const uint32_t> candidates,
+                           const Vec3& lo, const Vec3& hi, double halfDiagonal,
+                           double maxTrunkTime) const;
 
     const SkeletonIndex* index_;
     GrainParams params_;
