@@ -18,8 +18,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Points per chunk: the unit of candidate pruning inside a batch (an 8 x 8 tile).
 constexpr size_t kChunk = 64;
-/// Points per group of chunks: branch chains are culled for each before its chunks.
+/// Points per group of chunks: branch chains are culled for each before its chunks, when the
+/// tile has more candidate chains than kGroupCullAbove (with few, the culls cost more than
+/// they save).
 constexpr size_t kGroup = 4 * kChunk;
+constexpr size_t kGroupCullAbove = 64;
 /// Up to this many kept segments of a chain, a point measures them in double one by one: the
 /// vectorised float pass only pays beyond.
 constexpr uint32_t kDirectScan = 12;
@@ -523,7 +526,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     for (size_t g0 = 0; g0 < n; g0 += kGroup) {
         const size_t g1 = std::min(n, g0 + kGroup);
         std::span<const uint32_t> groupChains = chains;
-        if (n > kGroup) {
+        if (n > kGroup && chains.size() > kGroupCullAbove) {
             const Box group = boxOf({pts.data() + g0, g1 - g0});
             double groupTrunkTime = 0;
             for (size_t i = g0; i < g1; ++i)
