@@ -87,11 +87,25 @@ ChainTrees::Nearest ChainTrees::nearest(uint32_t chain, const Vec3& p, double ma
     return search(chain, p, maxDistance2);
 }
 
+ChainTrees::BoxQuery ChainTrees::makeBoxQuery(const Vec3& centre, const Vec3& half,
+                                              double farthest) {
+    BoxQuery q;
+    q.centre = centre;
+    q.half = half;
+    q.farthest = farthest;
+    const double keep = (q.farthest + length(q.half)) * (1 + 1e-9) + 1e-9;
+    q.keep2 = keep * keep;
+    // A segment whose joint J could be a point's nearest point lies within `farthest` of it:
+    // |P - J| = q <= farthest. The two squared distances round to within ~1e-15 (q^2 + q M),
+    // M the largest coordinate; the neighbour is nearer by at least along^2. Ask for 1000x.
+    const double m = std::max({std::abs(centre.x), std::abs(centre.y), std::abs(centre.z)}) +
+                     length(half) + farthest;
+    q.jointMargin = std::sqrt(1e-12 * farthest * (2 * farthest + m));
+    return q;
+}
+
 ChainTrees::BoxQuery ChainTrees::boxQuery(const Vec3& lo, const Vec3& hi,
                                           uint32_t nearestToCentre) const {
-    BoxQuery q;
-    q.centre = (lo + hi) * 0.5;
-    q.half = (hi - lo) * 0.5;
     // Distance to a segment is convex in P, so over the box the distance to the centre's
     // nearest segment is largest at a corner: no point of the box has its nearest farther
     // than that, and no candidate lies farther than that plus the half-diagonal from the centre.
@@ -100,10 +114,7 @@ ChainTrees::BoxQuery ChainTrees::boxQuery(const Vec3& lo, const Vec3& hi,
         const Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
         farthest2 = std::max(farthest2, project(segments_[nearestToCentre], c).distance2);
     }
-    q.farthest = std::sqrt(farthest2) * (1 + 1e-9) + 1e-9;
-    const double keep = (q.farthest + length(q.half)) * (1 + 1e-9) + 1e-9;
-    q.keep2 = keep * keep;
-    return q;
+    return makeBoxQuery((lo + hi) * 0.5, (hi - lo) * 0.5, std::sqrt(farthest2) * (1 + 1e-9) + 1e-9);
 }
 
 inline bool ChainTrees::mayBeNearest(uint32_t segmentId, const BoxQuery& box) const {
@@ -122,17 +133,22 @@ inline bool ChainTrees::mayBeNearest(uint32_t segmentId, const BoxQuery& box) co
     const FieldSegment& s = segments_[segmentId];
     const auto [mn, mx] = range(s);
     if (mx >= 0 && mn <= 1) return true;  // the box meets the slab
-    if (mn > 1)  // wholly past the end: the wedge before the next segment's start plane
-        return s.next == kNone || range(segments_[static_cast<uint32_t>(s.next)]).first <= 0;
+    if (mn > 1) {  // wholly past the end: the wedge before the next segment's start plane
+        if (s.next == kNone) return true;
+        const FieldSegment& next = segments_[static_cast<uint32_t>(s.next)];
+        return range(next).first <= box.jointMargin / next.length;
+    }
     // wholly before the start: the wedge past the previous segment's end plane
-    return s.previous == kNone || range(segments_[static_cast<uint32_t>(s.previous)]).second >= 1;
+    if (s.previous == kNone) return true;
+    const FieldSegment& previous = segments_[static_cast<uint32_t>(s.previous)];
+    return range(previous).second >= 1 - box.jointMargin / previous.length;
 }
 
-void ChainTrees::candidates(uint32_t chain, const Vec3& lo, const Vec3& hi,
-                            uint32_t nearestToCentre, std::vector<uint32_t>& out) const {
+double ChainTrees::candidates(uint32_t chain, const Vec3& lo, const Vec3& hi,
+                              uint32_t nearestToCentre, std::vector<uint32_t>& out) const {
     if (!hierarchical_) return candidatesByScan(chain, lo, hi, nearestToCentre, out);
-    if (chainFirst_[chain] == chainEnd_[chain]) return;
     const BoxQuery box = boxQuery(lo, hi, nearestToCentre);
+    if (chainFirst_[chain] == chainEnd_[chain]) return box.farthest;
     const double keep = std::sqrt(box.keep2);
     uint32_t stack[64];  // left child on top: segments come out in id order
     int top = 0;
@@ -165,13 +181,12 @@ void ChainTrees::candidates(uint32_t chain, const Vec3& lo, const Vec3& hi,
         stack[top++] = n.right;
         stack[top++] = n.left;
     }
+    return box.farthest;
 }
 
 void ChainTrees::narrow(std::span<const uint32_t> segments, const Vec3& lo, const Vec3& hi,
-                        std::vector<uint32_t>& out) const {
-    BoxQuery box;
-    box.centre = (lo + hi) * 0.5;
-    box.half = (hi - lo) * 0.5;
+                        double farthest, std::vector<uint32_t>& out) const {
+    const BoxQuery box = makeBoxQuery((lo + hi) * 0.5, (hi - lo) * 0.5, farthest);
     for (const uint32_t s : segments)
         if (mayBeNearest(s, box)) out.push_back(s);
 }
@@ -232,12 +247,13 @@ ChainTrees::Nearest ChainTrees::nearestByScan(uint32_t chain, const Vec3& p,
     return best.segment == kNone ? Nearest{} : best;
 }
 
-void ChainTrees::candidatesByScan(uint32_t chain, const Vec3& lo, const Vec3& hi,
-                                  uint32_t nearestToCentre, std::vector<uint32_t>& out) const {
+double ChainTrees::candidatesByScan(uint32_t chain, const Vec3& lo, const Vec3& hi,
+                                    uint32_t nearestToCentre, std::vector<uint32_t>& out) const {
     const BoxQuery box = boxQuery(lo, hi, nearestToCentre);
     for (uint32_t s = chainFirst_[chain]; s < chainEnd_[chain]; ++s)
         if (project(segments_[s], box.centre).distance2 <= box.keep2 && mayBeNearest(s, box))
             out.push_back(s);
+    return box.farthest;
 }
 
 }  // namespace nenrin

@@ -40,19 +40,22 @@ public:
     /// the chain (as nearest() picks it) for some point of the box [lo, hi]. `nearestToCentre`:
     /// the chain's nearest segment to the box's centre. Typically the few segments the box
     /// projects onto, however long the chain is.
-    void candidates(uint32_t chain, const Vec3& lo, const Vec3& hi, uint32_t nearestToCentre,
-                    std::vector<uint32_t>& out) const;
+    /// Returns a bound on the distance from any point of the box to the chain (for narrow()).
+    double candidates(uint32_t chain, const Vec3& lo, const Vec3& hi, uint32_t nearestToCentre,
+                      std::vector<uint32_t>& out) const;
 
     /// Appends, in their order, those of `segments` (one chain's) that may be the chain's
     /// nearest for some point of the box [lo, hi]: the slab test of candidates() alone, for
     /// narrowing a tile's candidates to a part of the tile.
-    void narrow(std::span<const uint32_t> segments, const Vec3& lo, const Vec3& hi,
+    /// `farthest`: a bound on the distance from any point of the box to the chain, such as
+    /// candidates() returned for a box holding this one.
+    void narrow(std::span<const uint32_t> segments, const Vec3& lo, const Vec3& hi, double farthest,
                 std::vector<uint32_t>& out) const;
 
     /// The same two by plain loops over the chain.
     Nearest nearestByScan(uint32_t chain, const Vec3& p, double maxDistance2) const;
-    void candidatesByScan(uint32_t chain, const Vec3& lo, const Vec3& hi, uint32_t nearestToCentre,
-                          std::vector<uint32_t>& out) const;
+    double candidatesByScan(uint32_t chain, const Vec3& lo, const Vec3& hi,
+                            uint32_t nearestToCentre, std::vector<uint32_t>& out) const;
 
 private:
     /// A run of segments [first, last) of one chain inside a capsule.
@@ -74,7 +77,13 @@ private:
         Vec3 centre, half;
         double keep2;     ///< no candidate is farther than sqrt(keep2) from the centre
         double farthest;  ///< no point of the box is farther than this from the chain
+        /// A neighbour rules a segment out only where the box lies past their joint's plane,
+        /// into the neighbour, by more than this (m): the neighbour is then nearer by more
+        /// than the rounding of the two squared distances.
+        double jointMargin;
     };
+    /// A box query from its centre, half-extent and farthest distance.
+    static BoxQuery makeBoxQuery(const Vec3& centre, const Vec3& half, double farthest);
     BoxQuery boxQuery(const Vec3& lo, const Vec3& hi, uint32_t nearestToCentre) const;
     /// False if no point of the box can have this segment as the nearest of its chain.
     bool mayBeNearest(uint32_t segment, const BoxQuery& box) const;

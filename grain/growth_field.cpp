@@ -339,7 +339,8 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, std::span<const uint
         //    the box projects onto).
         auto& ids = scratch.chainSegments;
         ids.clear();
-        chainTrees_.candidates(chain, lo, hi, static_cast<uint32_t>(nearestToCentre.segment), ids);
+        const double farthest = chainTrees_.candidates(
+            chain, lo, hi, static_cast<uint32_t>(nearestToCentre.segment), ids);
         GrowthScratch::TileChain tc;
         tc.chain = chain;
         tc.start = frame.start;
@@ -379,7 +380,7 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, std::span<const uint
                 if (quarters.used[q]) {
                     auto& narrowed = scratch.quarterSegments;
                     narrowed.clear();
-                    chainTrees_.narrow(ids, quarters.lo[q], quarters.hi[q], narrowed);
+                    chainTrees_.narrow(ids, quarters.lo[q], quarters.hi[q], farthest, narrowed);
                     for (const uint32_t id : narrowed)
                         kept.push(segments_[id].a, segments_[id].ab, segments_[id].invLength2, id);
                 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "grain/field_segment.h"
@@ -107,6 +108,52 @@ TEST(ChainTrees, CandidatesHoldEveryPointsNearestAndFewMore) {
     EXPECT_GE(points, 200000u);
     // 80 segments of ~5 cm per branch, boxes up to 5 cm: a handful each.
     EXPECT_LT(fineCandidates / fineBoxes, 6.0) << candidateCount << " candidates";
+}
+
+TEST(ChainTrees, CandidatesHoldTheNearestJustPastJointPlanes) {
+    // A point just past the plane where a segment's successor begins, far off to the side: the
+    // successor is nearer than the joint by a hair (along^2, for `along` 1e-13 to 1e-7 of the
+    // distance), less than the rounding of the two squared distances, so a plain loop may
+    // pick either. A segment may only be ruled out when its neighbour is nearer by more than
+    // rounding; else the answer would depend on the box a point came in.
+    const Skeleton sk = testTrees().back();  // 80 segments per branch
+    const std::vector<FieldSegment> segments = flattenSegments(sk);
+    const ChainTrees trees(segments, sk.chains());
+    SplitMix rng(17);
+    std::vector<uint32_t> ids;
+    int points = 0;
+    for (uint32_t chain = 1; chain < sk.chains().size(); ++chain) {
+        const SkeletonChain& c = sk.chain(chain);
+        for (uint32_t s = c.firstSegment; s + 1 < c.firstSegment + c.segmentCount; ++s) {
+            const FieldSegment& a = segments[s];
+            const FieldSegment& b = segments[s + 1];
+            // Perpendicular to the successor, towards the segment's far side of the joint.
+            Vec3 side = cross(b.axis, cross(a.axis, b.axis));
+            if (length(side) < 1e-9) side = cross(b.axis, Vec3{0.3, 0.5, 0.8});
+            side = side * (1 / length(side));
+            if (dot(side, a.axis) < 0) side = side * -1.0;
+            for (int k = 0; k < 4; ++k, ++points) {
+                const double r = rng.uniform(0.01, 0.5);
+                const double along = r * std::pow(10.0, rng.uniform(-13, -7));
+                const Vec3 p = b.a + side * r + b.axis * (k % 2 ? along : -along);
+                const auto nearest = trees.nearestByScan(chain, p, kInf).segment;
+                ids.clear();
+                const double farthest =
+                    trees.candidates(chain, p, p, static_cast<uint32_t>(nearest), ids);
+                ASSERT_TRUE(
+                    std::binary_search(ids.begin(), ids.end(), static_cast<uint32_t>(nearest)))
+                    << "segment " << s << " point " << k << ": nearest " << nearest;
+                std::vector<uint32_t> all, narrowed;
+                for (uint32_t x = c.firstSegment; x < c.firstSegment + c.segmentCount; ++x)
+                    all.push_back(x);
+                trees.narrow(all, p, p, farthest, narrowed);
+                ASSERT_TRUE(std::binary_search(narrowed.begin(), narrowed.end(),
+                                               static_cast<uint32_t>(nearest)))
+                    << "narrow: segment " << s << " point " << k << ": nearest " << nearest;
+            }
+        }
+    }
+    EXPECT_GT(points, 10000);
 }
 
 }  // namespace
