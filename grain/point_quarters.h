@@ -18,7 +18,7 @@ struct PointQuarters {
     std::array<Vec3, 4> lo, hi;      ///< bounds of each quarter's points
     std::array<bool, 4> used{};      ///< false: no point fell in that quarter
 
-    /// `lo`, `hi`: the points' bounding box.
+    /// `boxLo`, `boxHi`: the points' bounding box.
     void split(std::span<const Vec3> points, const Vec3& boxLo, const Vec3& boxHi);
 };
 
