@@ -364,25 +364,24 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, std::span<const uint
             continue;
         // 5. Per quarter of the chunk, the segments that can be nearest for its points (worth
         //    it once a chain meets the tile in more than a few).
-        const uint32_t first = kept.size();
-        if (ids.size() <= kQuarterAbove) {
-            for (const uint32_t id : ids)
+        auto keep = [&](std::span<const uint32_t> segments) {
+            for (const uint32_t id : segments)
                 kept.push(segments_[id].a, segments_[id].ab, segments_[id].invLength2, id);
-            tc.begin.fill(first);
+        };
+        if (ids.size() <= kQuarterAbove) {
+            tc.begin.fill(kept.size());
+            keep(ids);
             tc.end.fill(kept.size());
         } else {
-            if (!scratch.quartersSplit)
-                scratch.quarters.split(scratch.quartersOf, scratch.chunkLo, scratch.chunkHi);
-            scratch.quartersSplit = true;
-            const PointQuarters& quarters = scratch.quarters;
+            PointQuarters& quarters = scratch.quarters;
+            quarters.split();
             for (int q = 0; q < 4; ++q) {
                 tc.begin[q] = kept.size();
-                if (quarters.used[q]) {
+                if (quarters.used(q)) {
                     auto& narrowed = scratch.quarterSegments;
                     narrowed.clear();
-                    chainTrees_.narrow(ids, quarters.lo[q], quarters.hi[q], farthest, narrowed);
-                    for (const uint32_t id : narrowed)
-                        kept.push(segments_[id].a, segments_[id].ab, segments_[id].invLength2, id);
+                    chainTrees_.narrow(ids, quarters.lo(q), quarters.hi(q), farthest, narrowed);
+                    keep(narrowed);
                 }
                 tc.end[q] = kept.size();
             }
@@ -515,46 +514,43 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     if (chains.empty()) return;
     std::sort(chains.begin(), chains.end());
     chains.erase(std::unique(chains.begin(), chains.end()), chains.end());
-    // The same tests once for the whole batch, over a ball that holds every chunk's (twice
-    // the half-diagonal: a chunk's centre lies within one of the batch's, its half-diagonal
-    // is at most the batch's): what fails here fails for every chunk.
-    std::erase_if(chains, [&](uint32_t chain) {
+    // Tests 1-3 of prepareTileChains once for the whole batch, then per group of chunks
+    // (whose trunk times vary less than the batch's), each over a ball that holds every
+    // chunk's in it (twice the half-diagonal: a chunk's centre lies within one of the
+    // group's, its half-diagonal is at most the group's): what fails there fails for every
+    // chunk.
+    auto largestTrunkTime = [&](size_t i0, size_t i1) {
+        double t = 0;
+        for (size_t i = i0; i < i1; ++i) t = std::max(t, out[i].trunkTime);
+        return t;
+    };
+    auto mayMatterInside = [&](uint32_t chain, const Box& box, double trunkTime) {
         ChainReach reach;
-        return !chainMayMatter(chain, batch.lo, batch.hi, centre, 2 * halfDiagonal, maxTrunkTime,
-                               reach);
-    });
-    // And again per group of chunks, whose trunk times vary less than the batch's.
+        return chainMayMatter(chain, box.lo, box.hi, box.centre(), 2 * box.halfDiagonal(),
+                              trunkTime, reach);
+    };
+    std::erase_if(chains,
+                  [&](uint32_t chain) { return !mayMatterInside(chain, batch, maxTrunkTime); });
     for (size_t g0 = 0; g0 < n; g0 += kGroup) {
         const size_t g1 = std::min(n, g0 + kGroup);
         std::span<const uint32_t> groupChains = chains;
         if (n > kGroup && chains.size() > kGroupCullAbove) {
             const Box group = boxOf({pts.data() + g0, g1 - g0});
-            double groupTrunkTime = 0;
-            for (size_t i = g0; i < g1; ++i)
-                groupTrunkTime = std::max(groupTrunkTime, out[i].trunkTime);
+            const double groupTrunkTime = largestTrunkTime(g0, g1);
             auto& culled = scratch.groupChains;
             culled.clear();
-            for (const uint32_t chain : chains) {
-                ChainReach reach;
-                if (chainMayMatter(chain, group.lo, group.hi, group.centre(),
-                                   2 * group.halfDiagonal(), groupTrunkTime, reach))
-                    culled.push_back(chain);
-            }
+            for (const uint32_t chain : chains)
+                if (mayMatterInside(chain, group, groupTrunkTime)) culled.push_back(chain);
             groupChains = culled;
         }
         for (size_t c0 = g0; c0 < g1; c0 += kChunk) {
             const size_t c1 = std::min(g1, c0 + kChunk);
-            const Box chunk = boxOf({pts.data() + c0, c1 - c0});
-            double chunkTrunkTime = 0;
-            for (size_t i = c0; i < c1; ++i)
-                chunkTrunkTime = std::max(chunkTrunkTime, out[i].trunkTime);
-            scratch.quartersOf = {pts.data() + c0, c1 - c0};
-            scratch.chunkLo = chunk.lo;
-            scratch.chunkHi = chunk.hi;
-            scratch.quartersSplit = false;
+            const std::span<const Vec3> chunkPoints{pts.data() + c0, c1 - c0};
+            const Box chunk = boxOf(chunkPoints);
+            scratch.quarters.reset(chunkPoints, chunk.lo, chunk.hi);
             prepareTileChains(scratch, groupChains, chunk.lo, chunk.hi, chunk.halfDiagonal(),
-                              chunkTrunkTime);
-            evaluateBranches({pts.data() + c0, c1 - c0}, out.subspan(c0, c1 - c0), scratch);
+                              largestTrunkTime(c0, c1));
+            evaluateBranches(chunkPoints, out.subspan(c0, c1 - c0), scratch);
         }
     }
 }
@@ -571,7 +567,7 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
         auto& terms = scratch.terms;
         terms.clear();
         if (scratch.tileChains.empty()) continue;
-        const uint8_t quarter = scratch.quartersSplit ? scratch.quarters.quarterOf[i] : 0;
+        const uint8_t quarter = scratch.quarters.quarterOf(i);
         for (const auto& tc : scratch.tileChains) {
             // alpha: angle between QP and the plane F through the branch start Q,
             // perpendicular to the branch (eq. 5). Behind F the branch does not count.

@@ -78,11 +78,7 @@ struct GrowthScratch {
     std::vector<uint32_t> groupChains;      ///< those that may matter for a group of chunks
     std::vector<uint32_t> chainSegments;    ///< one chain's segments near the tile
     std::vector<uint32_t> quarterSegments;  ///< those that may matter for one quarter
-    /// The current chunk's points and their quarters, split when a chain first needs them.
-    std::span<const Vec3> quartersOf;
-    Vec3 chunkLo, chunkHi;
-    bool quartersSplit = false;
-    PointQuarters quarters;
+    PointQuarters quarters;  ///< of the current chunk, split when a chain first needs it
     std::vector<double> centreDistances;
     struct ChainTerm {
         uint32_t chain;

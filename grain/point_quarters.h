@@ -3,6 +3,8 @@
 /// cut at the middles of its two longest sides, a long one (second side under half the
 /// first) into four along its length. A finely divided branch meets a quarter of a tile in
 /// about half the segments it meets in the whole tile, so each point measures fewer.
+/// The split is done on demand, once per chunk: only chains meeting the chunk in many
+/// segments need it.
 
 #include <array>
 #include <cstdint>
@@ -13,13 +15,26 @@
 
 namespace nenrin {
 
-struct PointQuarters {
-    std::vector<uint8_t> quarterOf;  ///< per point of the chunk: 0..3
-    std::array<Vec3, 4> lo, hi;      ///< bounds of each quarter's points
-    std::array<bool, 4> used{};      ///< false: no point fell in that quarter
+class PointQuarters {
+public:
+    /// A new chunk, not split yet: every point is in quarter 0. `boxLo`, `boxHi`: the points'
+    /// bounding box. The points must outlive the use.
+    void reset(std::span<const Vec3> points, const Vec3& boxLo, const Vec3& boxHi);
+    /// Splits the chunk; later calls until the next reset() do nothing.
+    void split();
 
-    /// `boxLo`, `boxHi`: the points' bounding box.
-    void split(std::span<const Vec3> points, const Vec3& boxLo, const Vec3& boxHi);
+    uint8_t quarterOf(size_t point) const { return split_ ? quarterOf_[point] : 0; }
+    const Vec3& lo(int quarter) const { return lo_[quarter]; }  ///< bounds of its points
+    const Vec3& hi(int quarter) const { return hi_[quarter]; }
+    bool used(int quarter) const { return used_[quarter]; }  ///< false: no point fell in it
+
+private:
+    std::span<const Vec3> points_;
+    Vec3 boxLo_, boxHi_;
+    bool split_ = false;
+    std::vector<uint8_t> quarterOf_;
+    std::array<Vec3, 4> lo_, hi_;
+    std::array<bool, 4> used_{};
 };
 
 }  // namespace nenrin

@@ -19,18 +19,19 @@ std::array<int, 4> splitAndCheck(const std::vector<Vec3>& points) {
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
     PointQuarters q;
-    q.split(points, lo, hi);
+    q.reset(points, lo, hi);
+    for (size_t i = 0; i < points.size(); ++i) EXPECT_EQ(q.quarterOf(i), 0) << "before split";
+    q.split();
     std::array<int, 4> counts{};
-    EXPECT_EQ(q.quarterOf.size(), points.size());
     for (size_t i = 0; i < points.size(); ++i) {
-        const int k = q.quarterOf[i];
+        const int k = q.quarterOf(i);
         const Vec3& p = points[i];
         ++counts[k];
-        EXPECT_TRUE(q.lo[k].x <= p.x && p.x <= q.hi[k].x && q.lo[k].y <= p.y && p.y <= q.hi[k].y &&
-                    q.lo[k].z <= p.z && p.z <= q.hi[k].z)
+        EXPECT_TRUE(q.lo(k).x <= p.x && p.x <= q.hi(k).x && q.lo(k).y <= p.y && p.y <= q.hi(k).y &&
+                    q.lo(k).z <= p.z && p.z <= q.hi(k).z)
             << "point " << i << " outside quarter " << k;
     }
-    for (int k = 0; k < 4; ++k) EXPECT_EQ(q.used[k], counts[k] > 0) << k;
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(q.used(k), counts[k] > 0) << k;
     return counts;
 }
 
