@@ -38,6 +38,16 @@ double diebackLowerBound(double t, double deathTime, double eps) {
     return t * factor;
 }
 
+/// The largest time t whose diebackLowerBound(t, deathTime, eps) can stay under `limit`
+/// (rounded up): a path must come in under it before dieback to come in under `limit` after.
+double diebackBudget(double limit, double deathTime, double eps) {
+    if (!(limit > deathTime)) return limit;
+    const int n = static_cast<int>(std::min(eps, 8.0));
+    if (n <= 0) return limit;
+    // t (t / Tlim)^n = limit  <=>  t = Tlim (limit / Tlim)^(1 / (n + 1)).
+    return deathTime * std::pow(limit / deathTime, 1.0 / (n + 1)) * (1 + 1e-9) + 1e-12;
+}
+
 /// The nearest segment found so far. Candidates are visited in id order and only a strictly
 /// smaller distance replaces it, so ties go to the smaller id, like the indexes.
 struct Best {
@@ -80,10 +90,12 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
     chainTrees_ = ChainTrees(segments_, sk.chains(), index.backend() != IndexBackend::BruteForce);
     for (const SkeletonChain& c : sk.chains()) {
         const FieldSegment& first = segments_[c.firstSegment];
-        ChainFrame f{first.a, first.axis, kInf, 0};
+        ChainFrame f{first.a, first.axis, kInf, 0, 0, kInf};
         for (uint32_t i = c.firstSegment; i < c.firstSegment + c.segmentCount; ++i) {
             f.birthBound = std::min(f.birthBound, segments_[i].birthBound);
             f.gammaBound = std::max(f.gammaBound, segments_[i].gammaBound);
+            f.deathBound = std::max(f.deathBound, segments_[i].deathBound);
+            f.diebackBound = std::min(f.diebackBound, segments_[i].diebackBound);
         }
         chainFrames_.push_back(f);
     }
@@ -306,11 +318,12 @@ bool GrowthField::chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi,
     out.reachTime = reachTrunkTime * sinAlphaMax;
     // 3. The chain's path time over the whole ball is past reach x T1 x sin(alpha) of every
     //    point: from births alone, then from the chain's distance to the ball (looked up only
-    //    as far as it could matter).
-    if (frame.birthBound >= out.reachTime) return false;
-    const double reachable = frame.gammaBound * speedBound_ *
-                                 ageUnwarp(out.reachTime - frame.birthBound, params_.age.delta) +
-                             radius;
+    //    as far as it could matter); a dead branch's dieback (eq. 10) shortens that distance.
+    const double budget = diebackBudget(out.reachTime, frame.deathBound, frame.diebackBound);
+    if (frame.birthBound >= budget) return false;
+    const double reachable =
+        frame.gammaBound * speedBound_ * ageUnwarp(budget - frame.birthBound, params_.age.delta) +
+        radius;
     const double limit = reachable * (1 + 1e-9) + 1e-9;
     out.nearest = chainTrees_.nearest(chain, centre, limit * limit);
     return out.nearest.segment != kNone;

@@ -164,6 +164,7 @@ private:
     struct ChainFrame {
         Vec3 start, direction;
         double birthBound, gammaBound;
+        double deathBound, diebackBound;  ///< the latest death, the smallest dieback exponent
     };
     std::vector<ChainFrame> chainFrames_;
     double maxGamma_;            ///< largest branch gamma of the skeleton
