@@ -193,6 +193,9 @@ void ChainTrees::narrow(std::span<const uint32_t> segments, const Vec3& lo, cons
 
 ChainTrees::Nearest ChainTrees::search(uint32_t chain, const Vec3& p, double maxDistance2) const {
     if (chainFirst_[chain] == chainEnd_[chain]) return {};
+    // A chain of one leaf (most of a simulated conifer's twigs): its segments cost less than
+    // the capsule around them.
+    if (nodes_[roots_[chain]].left == 0) return nearestByScan(chain, p, maxDistance2);
     Nearest best{kNone, maxDistance2};
     double bestDistance = std::sqrt(best.distance2);
     // A node can hold a segment within the best distance only if its axis is within that plus

@@ -44,8 +44,11 @@ double diebackBudget(double limit, double deathTime, double eps) {
     if (!(limit > deathTime)) return limit;
     const int n = static_cast<int>(std::min(eps, 8.0));
     if (n <= 0) return limit;
-    // t (t / Tlim)^n = limit  <=>  t = Tlim (limit / Tlim)^(1 / (n + 1)).
-    return deathTime * std::pow(limit / deathTime, 1.0 / (n + 1)) * (1 + 1e-9) + 1e-12;
+    // t (t / Tlim)^n = limit  <=>  t = Tlim (limit / Tlim)^(1 / (n + 1)); the usual exponents
+    // without pow().
+    const double x = limit / deathTime;
+    const double root = n == 1 ? std::sqrt(x) : n == 2 ? std::cbrt(x) : std::pow(x, 1.0 / (n + 1));
+    return deathTime * root * (1 + 1e-9) + 1e-12;
 }
 
 /// The nearest segment found so far. Candidates are visited in id order and only a strictly
