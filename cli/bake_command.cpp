@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -127,7 +128,15 @@ void addMetadata(BakedGrid& grid, const CommonOptions& o, const LoadedWood& w) {
     grid.metadata["sample_step_z"] = vec(grid.stepZ);
 }
 
-void report(const BakedGrid& grid, const std::vector<std::string>& files, double seconds) {
+/// Wall-clock seconds of a bake's three stages: the sampling rate counts only the middle one
+/// (loading a big skeleton file can take longer than sampling it).
+struct BakeTimes {
+    double setUp = 0;  ///< reading the skeleton and grain, building the index and field
+    double baking = 0;
+    double writing = 0;
+};
+
+void report(const BakedGrid& grid, const std::vector<std::string>& files, const BakeTimes& t) {
     // Statistics of the wood only: samples outside a felled log (A = 0) do not count.
     float tMin = INFINITY, tMax = -INFINITY, knotMax = 0;
     size_t wood = 0;
@@ -140,8 +149,9 @@ void report(const BakedGrid& grid, const std::vector<std::string>& files, double
         knotMax = std::max(knotMax, px[5]);
     }
     for (const auto& f : files) fmt::print("wrote {}\n", f);
-    fmt::print("{} samples in {:.2f} s ({:.2f} M samples/s); ", grid.sampleCount(), seconds,
-               grid.sampleCount() / seconds * 1e-6);
+    fmt::print("{} samples in {:.2f} s ({:.2f} M samples/s; set-up {:.2f} s, writing {:.2f} s); ",
+               grid.sampleCount(), t.baking, grid.sampleCount() / std::max(t.baking, 1e-9) * 1e-6,
+               t.setUp, t.writing);
     if (wood == 0) {
         fmt::print("no wood: every sample is outside the felled log\n");
         return;
@@ -214,13 +224,19 @@ void addBakeCommands(CLI::App& app) {
             fmt::format("plane={} at={} size={}x{}m bottom={}", slicePlaneName(spec.plane), spec.at,
                         spec.width, spec.height, spec.bottom);
         makePart(grid, sliceCommon, JobKind::BakeSlice, slicePng);
+        BakeTimes times;
+        times.setUp = since(t0);
+        const auto tBake = std::chrono::steady_clock::now();
         bakeGrid(*wood->shader, grid, {sliceCommon.threads, sliceCommon.quiet, "Baking slice"});
+        times.baking = since(tBake);
+        const auto tWrite = std::chrono::steady_clock::now();
         auto files = writeExr(grid, sliceCommon.output);
         if (!slicePng.empty()) {
             writeSlicePreviewPng(grid, slicePng);
             files.push_back(slicePng);
         }
-        report(grid, files, since(t0));
+        times.writing = since(tWrite);
+        report(grid, files, times);
     });
 
     // --- volume ---
@@ -264,9 +280,15 @@ void addBakeCommands(CLI::App& app) {
         addMetadata(grid, volumeCommon, *wood);
         grid.metadata["box"] = box;
         makePart(grid, volumeCommon, JobKind::BakeVolume, "");
+        BakeTimes times;
+        times.setUp = since(t0);
+        const auto tBake = std::chrono::steady_clock::now();
         bakeGrid(*wood->shader, grid, {volumeCommon.threads, volumeCommon.quiet, "Baking volume"});
+        times.baking = since(tBake);
+        const auto tWrite = std::chrono::steady_clock::now();
         auto files = writeVolume(grid, volumeCommon.output);
-        report(grid, files, since(t0));
+        times.writing = since(tWrite);
+        report(grid, files, times);
     });
 
     addUvBakeCommand(bake);

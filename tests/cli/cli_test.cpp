@@ -6,6 +6,8 @@
 // Each test runs the binary (NENRIN_BINARY) in its own fresh temporary directory, with every
 // path absolute, so nothing depends on the working directory of the test runner.
 
+#include <regex>
+
 #include "tests/cli/cli_fixture.h"
 
 namespace {
@@ -318,6 +320,11 @@ TEST_F(CliTest, SliceBakeWritesExrWithChannelsAndMetadata) {
     EXPECT_EQ(r.err, "");
     EXPECT_NE(r.out.find("wrote " + (out_ / "slice.exr").string()), std::string::npos) << r.out;
     ASSERT_EQ(outputFiles(), std::vector<std::string>{"slice.exr"});
+    // The summary: 32 x 24 samples, the rate over the sampling alone, set-up and writing apart.
+    EXPECT_TRUE(std::regex_search(
+        r.out, std::regex(R"(\n768 samples in [0-9.]+ s \([0-9.]+ M samples/s; set-up [0-9.]+ s, )"
+                          R"(writing [0-9.]+ s\); wood [0-9.]+%, T )")))
+        << r.out;
 
     auto img = readImage(out_ / "slice.exr");
     ASSERT_TRUE(img);
