@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -195,8 +196,31 @@ InputError JsonReader::error(const std::string& key, const std::string& message)
 }
 
 const nlohmann::json& JsonReader::at(const std::string& key) {
-    used_.insert(key);
-    return (*node_)[key];
+    const nlohmann::json& v = (*node_)[key];
+    if (std::find(used_.begin(), used_.end(), &v) == used_.end()) used_.push_back(&v);
+    return v;
+}
+
+namespace {
+/// What toNumber accepts, checked without a path to name.
+bool acceptableNumber(const nlohmann::json& v) {
+    if (!v.is_number()) return false;
+    const double d = v.get<double>();
+    return std::isfinite(d) && std::abs(d) <= kMaxJsonMagnitude;
+}
+}  // namespace
+
+template <class Where>
+double JsonReader::readNumber(const nlohmann::json& v, const Where& where) const {
+    return acceptableNumber(v) ? v.get<double>() : toNumber(v, where());
+}
+
+template <class Where>
+Vec3 JsonReader::readVec3(const nlohmann::json& v, const Where& where) const {
+    if (v.is_array() && v.size() == 3 && acceptableNumber(v[0]) && acceptableNumber(v[1]) &&
+        acceptableNumber(v[2]))
+        return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
+    return toVec3(v, where());
 }
 
 double JsonReader::toNumber(const nlohmann::json& v, const std::string& where) const {
@@ -224,7 +248,7 @@ Vec3 JsonReader::toVec3(const nlohmann::json& v, const std::string& where) const
 }
 
 double JsonReader::number(const std::string& key, double fallback) {
-    return has(key) ? toNumber(at(key), pathOf(key)) : fallback;
+    return has(key) ? readNumber(at(key), [&] { return pathOf(key); }) : fallback;
 }
 
 double JsonReader::requireNumber(const std::string& key) {
@@ -296,7 +320,7 @@ std::string JsonReader::choice(const std::string& key, const std::string& fallba
 }
 
 Vec3 JsonReader::vec3(const std::string& key, const Vec3& fallback) {
-    return has(key) ? toVec3(at(key), pathOf(key)) : fallback;
+    return has(key) ? readVec3(at(key), [&] { return pathOf(key); }) : fallback;
 }
 
 Vec3 JsonReader::requireVec3(const std::string& key) {
@@ -312,7 +336,7 @@ std::vector<Vec3> JsonReader::requireVec3List(const std::string& key) {
             key, fmt::format("expected an array of [x, y, z] points, found {}", jsonTypeName(v)));
     std::vector<Vec3> out;
     for (size_t i = 0; i < v.size(); ++i)
-        out.push_back(toVec3(v[i], fmt::format("{}[{}]", pathOf(key), i)));
+        out.push_back(readVec3(v[i], [&] { return fmt::format("{}[{}]", pathOf(key), i); }));
     return out;
 }
 
@@ -323,7 +347,7 @@ std::vector<double> JsonReader::numberList(const std::string& key) {
         throw error(key, fmt::format("expected an array of numbers, found {}", jsonTypeName(v)));
     std::vector<double> out;
     for (size_t i = 0; i < v.size(); ++i)
-        out.push_back(toNumber(v[i], fmt::format("{}[{}]", pathOf(key), i)));
+        out.push_back(readNumber(v[i], [&] { return fmt::format("{}[{}]", pathOf(key), i); }));
     return out;
 }
 
@@ -350,7 +374,7 @@ std::vector<JsonReader> JsonReader::objectList(const std::string& key) {
 
 void JsonReader::finish() const {
     for (auto it = node_->begin(); it != node_->end(); ++it) {
-        if (!used_.count(it.key()))
+        if (std::find(used_.begin(), used_.end(), &it.value()) == used_.end())
             throw InputError(file_, pathOf(it.key()),
                              "unknown key (misspelled? see the format documentation)");
     }

@@ -10,7 +10,6 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -85,13 +84,20 @@ public:
 
 private:
     const nlohmann::json& at(const std::string& key);
+    /// The value as a number, or an error naming `where` (called only on a bad value: paths are
+    /// built only for messages, as a skeleton file has hundreds of thousands of numbers).
     double toNumber(const nlohmann::json& v, const std::string& where) const;
     Vec3 toVec3(const nlohmann::json& v, const std::string& where) const;
+    template <class Where>
+    double readNumber(const nlohmann::json& v, const Where& where) const;
+    template <class Where>
+    Vec3 readVec3(const nlohmann::json& v, const Where& where) const;
 
     const nlohmann::json* node_;
     std::string file_;
     std::string path_;
-    std::set<std::string> used_;
+    /// The values read so far (each a member of node_): finish() names any other key.
+    std::vector<const nlohmann::json*> used_;
 };
 
 }  // namespace nenrin
