@@ -7,14 +7,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "grain/field_bounds.h"
 #include "grain/growth_terms.h"
 #include "skeleton/segment_geometry.h"
 
 namespace nenrin {
 
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Points per chunk: the unit of candidate pruning inside a batch (an 8 x 8 tile).
 constexpr size_t kChunk = 64;
@@ -26,30 +25,6 @@ constexpr size_t kGroupCullAbove = 64;
 /// Up to this many kept segments of a chain, a point measures them in double one by one: the
 /// vectorised float pass only pays beyond.
 constexpr uint32_t kDirectScan = 12;
-/// A chain meeting a chunk in more segments than this gets a narrower list per quarter.
-constexpr size_t kQuarterAbove = 3;
-
-/// A lower bound of dieback(t, deathTime, eps) without pow(): (t / Tlim)^eps >= (t / Tlim)^n
-/// for n = floor(eps) since t / Tlim >= 1 there.
-double diebackLowerBound(double t, double deathTime, double eps) {
-    if (!(t > deathTime)) return t;
-    double x = t / deathTime, factor = 1;
-    for (int n = static_cast<int>(std::min(eps, 8.0)); n > 0; --n) factor *= x;
-    return t * factor;
-}
-
-/// The largest time t whose diebackLowerBound(t, deathTime, eps) can stay under `limit`
-/// (rounded up): a path must come in under it before dieback to come in under `limit` after.
-double diebackBudget(double limit, double deathTime, double eps) {
-    if (!(limit > deathTime)) return limit;
-    const int n = static_cast<int>(std::min(eps, 8.0));
-    if (n <= 0) return limit;
-    // t (t / Tlim)^n = limit  <=>  t = Tlim (limit / Tlim)^(1 / (n + 1)); the usual exponents
-    // without pow().
-    const double x = limit / deathTime;
-    const double root = n == 1 ? std::sqrt(x) : n == 2 ? std::cbrt(x) : std::pow(x, 1.0 / (n + 1));
-    return deathTime * root * (1 + 1e-9) + 1e-12;
-}
 
 /// The nearest segment found so far. Candidates are visited in id order and only a strictly
 /// smaller distance replaces it, so ties go to the smaller id, like the indexes.
@@ -57,28 +32,6 @@ struct Best {
     int32_t segment = kNone;
     double distance2 = kInf;
 };
-
-/// An axis-aligned box: chunk bounds and the bounds of kept segments.
-struct Box {
-    Vec3 lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
-    void add(const Vec3& p) {
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-    Vec3 centre() const { return (lo + hi) * 0.5; }
-    double halfDiagonal() const { return 0.5 * length(hi - lo); }
-    /// Corner i of 8 (bit 0: x, bit 1: y, bit 2: z at the upper side). A linear function
-    /// takes its extremes over the box at corners.
-    Vec3 corner(int i) const {
-        return {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z};
-    }
-};
-
-Box boxOf(std::span<const Vec3> points) {
-    Box b;
-    for (const Vec3& p : points) b.add(p);
-    return b;
-}
 
 }  // namespace
 
@@ -262,7 +215,7 @@ void GrowthField::describeKnot(const GrowthScratch::ChainTerm& t, const Vec3& po
 
 bool GrowthField::insideSlabOnly(uint32_t segmentId, const Vec3& lo, const Vec3& hi) const {
     // tRaw is linear in P, so over the box it spans the range of its corner values.
-    const Box box{lo, hi};
+    const PointBox box{lo, hi};
     auto range = [&](const FieldSegment& x) {
         double mn = kInf, mx = -kInf;
         for (int corner = 0; corner < 8; ++corner) {
@@ -281,129 +234,6 @@ bool GrowthField::insideSlabOnly(uint32_t segmentId, const Vec3& lo, const Vec3&
     if (s.previous != kNone && !(range(segments_[s.previous]).first > 1 + kMargin)) return false;
     if (s.next != kNone && !(range(segments_[s.next]).second < -kMargin)) return false;
     return true;
-}
-
-double GrowthField::branchSearchRadius(double trunkTime) const {
-    // A branch path at distance D has T_c >= (D / (gamma speedBound))^delta; once that reaches
-    // reach x T1 its weight is 0, so farther segments need not be looked at.
-    return maxGamma_ * speedBound_ *
-           ageUnwarp(params_.junction.reach * std::max(trunkTime, 0.0), params_.age.delta);
-}
-
-bool GrowthField::chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi, const Vec3& centre,
-                                 double radius, double maxTrunkTime, ChainReach& out) const {
-    const Box box{lo, hi};
-    const double reachTrunkTime = params_.junction.reach * maxTrunkTime;
-    // 1. Born too late to come in under reach x T1 anywhere (sin(alpha) <= 1).
-    const ChainFrame& frame = chainFrames_[chain];
-    if (frame.birthBound >= reachTrunkTime) return false;
-    // 2. The whole box behind the plane F of the branch: sin(alpha) <= 0 everywhere.
-    bool anyAhead = false;
-    for (int corner = 0; corner < 8 && !anyAhead; ++corner)
-        anyAhead = dot(box.corner(corner) - frame.start, frame.direction) > 0;
-    if (!anyAhead) return false;
-    // The largest sin(alpha) over the ball, seen from Q: the blend compares T_c / sin(alpha)
-    // with T1. With c the cosine of the angle between QC and the branch and s the sine of
-    // the ball's half-angle, it is cos(angle - spread), or 1 once the ball reaches the
-    // branch's axis.
-    const Vec3 toCentre = centre - frame.start;
-    const double dc = length(toCentre);
-    double sinAlphaMax = 1;
-    if (dc > radius) {
-        const double c = std::clamp(dot(toCentre, frame.direction) / dc, -1.0, 1.0);
-        const double s = std::min(1.0, radius / dc * (1 + 1e-9) + 1e-12);
-        const double cosSpread = std::sqrt(std::max(0.0, 1 - s * s));
-        if (c < cosSpread)
-            sinAlphaMax = std::min(
-                1.0,
-                (c * cosSpread + std::sqrt(std::max(0.0, 1 - c * c)) * s) * (1 + 1e-12) + 1e-12);
-    }
-    out.reachTime = reachTrunkTime * sinAlphaMax;
-    // 3. The chain's path time over the whole ball is past reach x T1 x sin(alpha) of every
-    //    point: from births alone, then from the chain's distance to the ball (looked up only
-    //    as far as it could matter); a dead branch's dieback (eq. 10) shortens that distance.
-    const double budget = diebackBudget(out.reachTime, frame.deathBound, frame.diebackBound);
-    if (frame.birthBound >= budget) return false;
-    const double reachable =
-        frame.gammaBound * speedBound_ * ageUnwarp(budget - frame.birthBound, params_.age.delta) +
-        radius;
-    const double limit = reachable * (1 + 1e-9) + 1e-9;
-    out.nearest = chainTrees_.nearest(chain, centre, limit * limit);
-    return out.nearest.segment != kNone;
-}
-
-void GrowthField::prepareTileChains(GrowthScratch& scratch, std::span<const uint32_t> candidates,
-                                    const Vec3& lo, const Vec3& hi, double halfDiagonal,
-                                    double maxTrunkTime) const {
-    // Keep the chains near the batch that can matter for some point of the tile; every test
-    // here is exact (a bound over the whole box), so results do not depend on tiling.
-    const Box box{lo, hi};
-    const Vec3 centre = box.centre();
-    auto& chains = scratch.tileChains;
-    chains.clear();
-    auto& kept = scratch.keptSegments;
-    kept.reset(centre);
-    for (const uint32_t chain : candidates) {
-        // 1-3: births, plane F and distance, over the chunk's bounding ball.
-        ChainReach reach;
-        if (!chainMayMatter(chain, lo, hi, centre, halfDiagonal, maxTrunkTime, reach)) continue;
-        const ChainFrame& frame = chainFrames_[chain];
-        const double reachTime = reach.reachTime;
-        const ChainTrees::Nearest& nearestToCentre = reach.nearest;
-        const double nearest = std::sqrt(nearestToCentre.distance2);
-        // 4. Segments that cannot be any point's nearest (on a straight run, all but the few
-        //    the box projects onto).
-        auto& ids = scratch.chainSegments;
-        ids.clear();
-        const double farthest = chainTrees_.candidates(
-            chain, lo, hi, static_cast<uint32_t>(nearestToCentre.segment), ids);
-        GrowthScratch::TileChain tc;
-        tc.chain = chain;
-        tc.start = frame.start;
-        tc.direction = frame.direction;
-        Box bounds;
-        tc.gamma = 0;
-        tc.birthBound = kInf;
-        for (const uint32_t id : ids) {
-            const FieldSegment& s = segments_[id];
-            bounds.add(s.a);
-            bounds.add(s.a + s.ab);
-            tc.gamma = std::max(tc.gamma, s.gammaBound);
-            tc.birthBound = std::min(tc.birthBound, s.birthBound);
-        }
-        tc.lower = bounds.lo;
-        tc.upper = bounds.hi;
-        const double closest = std::max(0.0, nearest - halfDiagonal) * (1 - 1e-9);
-        if (ids.empty() ||
-            tc.birthBound + ageWarp(closest / (tc.gamma * speedBound_), params_.age.delta) >=
-                reachTime)
-            continue;
-        // 5. Per quarter of the chunk, the segments that can be nearest for its points (worth
-        //    it once a chain meets the tile in more than a few).
-        auto keep = [&](std::span<const uint32_t> segments) {
-            for (const uint32_t id : segments)
-                kept.push(segments_[id].a, segments_[id].ab, segments_[id].invLength2, id);
-        };
-        if (ids.size() <= kQuarterAbove) {
-            tc.begin.fill(kept.size());
-            keep(ids);
-            tc.end.fill(kept.size());
-        } else {
-            PointQuarters& quarters = scratch.quarters;
-            quarters.split();
-            for (int q = 0; q < 4; ++q) {
-                tc.begin[q] = kept.size();
-                if (quarters.used(q)) {
-                    auto& narrowed = scratch.quarterSegments;
-                    narrowed.clear();
-                    chainTrees_.narrow(ids, quarters.lo(q), quarters.hi(q), farthest, narrowed);
-                    keep(narrowed);
-                }
-                tc.end[q] = kept.size();
-            }
-        }
-        chains.push_back(tc);
-    }
 }
 
 GrowthSample GrowthField::evaluate(const Vec3& p) const {
@@ -447,7 +277,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
             for (size_t j = i; j < i + stencil; ++j) pts[j] = inDomain(input[j]) + d;
         }
     }
-    const Box batch = boxOf(pts);
+    const PointBox batch = boxOf(pts);
     const Vec3 centre = batch.centre();
     const double halfDiagonal = batch.halfDiagonal();
 
@@ -462,7 +292,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     double maxTrunkTime = 0;
     for (size_t c0 = 0; c0 < n; c0 += kChunk) {
         const size_t c1 = std::min(n, c0 + kChunk);
-        const Box chunk = boxOf({pts.data() + c0, c1 - c0});
+        const PointBox chunk = boxOf({pts.data() + c0, c1 - c0});
         // The same argument per chunk: keep the trunk candidates that can be some point's
         // nearest (sorted order is kept, so ties still go to the smaller id).
         const Vec3 cc = chunk.centre();
@@ -540,7 +370,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         for (size_t i = i0; i < i1; ++i) t = std::max(t, out[i].trunkTime);
         return t;
     };
-    auto mayMatterInside = [&](uint32_t chain, const Box& box, double trunkTime) {
+    auto mayMatterInside = [&](uint32_t chain, const PointBox& box, double trunkTime) {
         ChainReach reach;
         return chainMayMatter(chain, box.lo, box.hi, box.centre(), 2 * box.halfDiagonal(),
                               trunkTime, reach);
@@ -551,7 +381,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         const size_t g1 = std::min(n, g0 + kGroup);
         std::span<const uint32_t> groupChains = chains;
         if (n > kGroup && chains.size() > kGroupCullAbove) {
-            const Box group = boxOf({pts.data() + g0, g1 - g0});
+            const PointBox group = boxOf({pts.data() + g0, g1 - g0});
             const double groupTrunkTime = largestTrunkTime(g0, g1);
             auto& culled = scratch.groupChains;
             culled.clear();
@@ -562,7 +392,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         for (size_t c0 = g0; c0 < g1; c0 += kChunk) {
             const size_t c1 = std::min(g1, c0 + kChunk);
             const std::span<const Vec3> chunkPoints{pts.data() + c0, c1 - c0};
-            const Box chunk = boxOf(chunkPoints);
+            const PointBox chunk = boxOf(chunkPoints);
             scratch.quarters.reset(chunkPoints, chunk.lo, chunk.hi);
             prepareTileChains(scratch, groupChains, chunk.lo, chunk.hi, chunk.halfDiagonal(),
                               largestTrunkTime(c0, c1));

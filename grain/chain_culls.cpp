@@ -1,0 +1,144 @@
+/// The growth field's culls of branch chains: which chains can matter for a box of points,
+/// and for a chunk, which of their segments each quarter of it must measure. Every test is a
+/// bound over the whole box, so no answer depends on how points were batched.
+
+#include <algorithm>
+#include <cmath>
+
+#include "grain/field_bounds.h"
+#include "grain/growth_field.h"
+#include "grain/growth_terms.h"
+
+namespace nenrin {
+
+namespace {
+
+/// A chain meeting a chunk in more segments than this gets a narrower list per quarter.
+constexpr size_t kQuarterAbove = 3;
+
+}  // namespace
+
+double GrowthField::branchSearchRadius(double trunkTime) const {
+    // A branch path at distance D has T_c >= (D / (gamma speedBound))^delta; once that reaches
+    // reach x T1 its weight is 0, so farther segments need not be looked at.
+    return maxGamma_ * speedBound_ *
+           ageUnwarp(params_.junction.reach * std::max(trunkTime, 0.0), params_.age.delta);
+}
+
+bool GrowthField::chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi, const Vec3& centre,
+                                 double radius, double maxTrunkTime, ChainReach& out) const {
+    const PointBox box{lo, hi};
+    const double reachTrunkTime = params_.junction.reach * maxTrunkTime;
+    // 1. Born too late to come in under reach x T1 anywhere (sin(alpha) <= 1).
+    const ChainFrame& frame = chainFrames_[chain];
+    if (frame.birthBound >= reachTrunkTime) return false;
+    // 2. The whole box behind the plane F of the branch: sin(alpha) <= 0 everywhere.
+    bool anyAhead = false;
+    for (int corner = 0; corner < 8 && !anyAhead; ++corner)
+        anyAhead = dot(box.corner(corner) - frame.start, frame.direction) > 0;
+    if (!anyAhead) return false;
+    // The largest sin(alpha) over the ball, seen from Q: the blend compares T_c / sin(alpha)
+    // with T1. With c the cosine of the angle between QC and the branch and s the sine of
+    // the ball's half-angle, it is cos(angle - spread), or 1 once the ball reaches the
+    // branch's axis.
+    const Vec3 toCentre = centre - frame.start;
+    const double dc = length(toCentre);
+    double sinAlphaMax = 1;
+    if (dc > radius) {
+        const double c = std::clamp(dot(toCentre, frame.direction) / dc, -1.0, 1.0);
+        const double s = std::min(1.0, radius / dc * (1 + 1e-9) + 1e-12);
+        const double cosSpread = std::sqrt(std::max(0.0, 1 - s * s));
+        if (c < cosSpread)
+            sinAlphaMax = std::min(
+                1.0,
+                (c * cosSpread + std::sqrt(std::max(0.0, 1 - c * c)) * s) * (1 + 1e-12) + 1e-12);
+    }
+    out.reachTime = reachTrunkTime * sinAlphaMax;
+    // 3. The chain's path time over the whole ball is past reach x T1 x sin(alpha) of every
+    //    point: from births alone, then from the chain's distance to the ball (looked up only
+    //    as far as it could matter); a dead branch's dieback (eq. 10) shortens that distance.
+    const double budget = diebackBudget(out.reachTime, frame.deathBound, frame.diebackBound);
+    if (frame.birthBound >= budget) return false;
+    const double reachable =
+        frame.gammaBound * speedBound_ * ageUnwarp(budget - frame.birthBound, params_.age.delta) +
+        radius;
+    const double limit = reachable * (1 + 1e-9) + 1e-9;
+    out.nearest = chainTrees_.nearest(chain, centre, limit * limit);
+    return out.nearest.segment != kNone;
+}
+
+void GrowthField::prepareTileChains(GrowthScratch& scratch, std::span<const uint32_t> candidates,
+                                    const Vec3& lo, const Vec3& hi, double halfDiagonal,
+                                    double maxTrunkTime) const {
+    // Keep the chains near the batch that can matter for some point of the tile; every test
+    // here is exact (a bound over the whole box), so results do not depend on tiling.
+    const PointBox box{lo, hi};
+    const Vec3 centre = box.centre();
+    auto& chains = scratch.tileChains;
+    chains.clear();
+    auto& kept = scratch.keptSegments;
+    kept.reset(centre);
+    for (const uint32_t chain : candidates) {
+        // 1-3: births, plane F and distance, over the chunk's bounding ball.
+        ChainReach reach;
+        if (!chainMayMatter(chain, lo, hi, centre, halfDiagonal, maxTrunkTime, reach)) continue;
+        const ChainFrame& frame = chainFrames_[chain];
+        const double reachTime = reach.reachTime;
+        const ChainTrees::Nearest& nearestToCentre = reach.nearest;
+        const double nearest = std::sqrt(nearestToCentre.distance2);
+        // 4. Segments that cannot be any point's nearest (on a straight run, all but the few
+        //    the box projects onto).
+        auto& ids = scratch.chainSegments;
+        ids.clear();
+        const double farthest = chainTrees_.candidates(
+            chain, lo, hi, static_cast<uint32_t>(nearestToCentre.segment), ids);
+        GrowthScratch::TileChain tc;
+        tc.chain = chain;
+        tc.start = frame.start;
+        tc.direction = frame.direction;
+        PointBox bounds;
+        tc.gamma = 0;
+        tc.birthBound = kInf;
+        for (const uint32_t id : ids) {
+            const FieldSegment& s = segments_[id];
+            bounds.add(s.a);
+            bounds.add(s.a + s.ab);
+            tc.gamma = std::max(tc.gamma, s.gammaBound);
+            tc.birthBound = std::min(tc.birthBound, s.birthBound);
+        }
+        tc.lower = bounds.lo;
+        tc.upper = bounds.hi;
+        const double closest = std::max(0.0, nearest - halfDiagonal) * (1 - 1e-9);
+        if (ids.empty() ||
+            tc.birthBound + ageWarp(closest / (tc.gamma * speedBound_), params_.age.delta) >=
+                reachTime)
+            continue;
+        // 5. Per quarter of the chunk, the segments that can be nearest for its points (worth
+        //    it once a chain meets the tile in more than a few).
+        auto keep = [&](std::span<const uint32_t> segments) {
+            for (const uint32_t id : segments)
+                kept.push(segments_[id].a, segments_[id].ab, segments_[id].invLength2, id);
+        };
+        if (ids.size() <= kQuarterAbove) {
+            tc.begin.fill(kept.size());
+            keep(ids);
+            tc.end.fill(kept.size());
+        } else {
+            PointQuarters& quarters = scratch.quarters;
+            quarters.split();
+            for (int q = 0; q < 4; ++q) {
+                tc.begin[q] = kept.size();
+                if (quarters.used(q)) {
+                    auto& narrowed = scratch.quarterSegments;
+                    narrowed.clear();
+                    chainTrees_.narrow(ids, quarters.lo(q), quarters.hi(q), farthest, narrowed);
+                    keep(narrowed);
+                }
+                tc.end[q] = kept.size();
+            }
+        }
+        chains.push_back(tc);
+    }
+}
+
+}  // namespace nenrin
