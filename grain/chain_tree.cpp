@@ -14,7 +14,7 @@ constexpr uint32_t kLeafSize = 4;
 /// Squared distance from p to the axis of a capsule.
 inline double axisDistance2(const Vec3& a, const Vec3& ab, double invLength2, const Vec3& p) {
     const Vec3 q = p - a;
-    const double t = std::clamp(dot(q, ab) * invLength2, 0.0, 1.0);
+    const double t = std::min(std::max(dot(q, ab) * invLength2, 0.0), 1.0);  // = std::clamp
     const Vec3 d = q - ab * t;
     return dot(d, d);
 }
