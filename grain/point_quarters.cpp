@@ -1,7 +1,6 @@
 #include "grain/point_quarters.h"
 
 #include <algorithm>
-#include <limits>
 
 namespace nenrin {
 
@@ -15,11 +14,8 @@ void PointQuarters::reset(std::span<const Vec3> points, const Vec3& boxLo, const
 void PointQuarters::split() {
     if (split_) return;
     split_ = true;
-    constexpr double kInf = std::numeric_limits<double>::infinity();
     quarterOf_.resize(points_.size());
-    lo_.fill({kInf, kInf, kInf});
-    hi_.fill({-kInf, -kInf, -kInf});
-    used_.fill(false);
+    boxes_.fill(PointBox{});
     // The box's sides, longest first.
     const double lower[3] = {boxLo_.x, boxLo_.y, boxLo_.z};
     const double upper[3] = {boxHi_.x, boxHi_.y, boxHi_.z};
@@ -38,9 +34,7 @@ void PointQuarters::split() {
         const int q = along ? (c[a] > quarterA) + (c[a] > midA) + (c[a] > threeQuartersA)
                             : 2 * (c[a] > midA) + (c[b] > midB);
         quarterOf_[i] = static_cast<uint8_t>(q);
-        lo_[q] = {std::min(lo_[q].x, p.x), std::min(lo_[q].y, p.y), std::min(lo_[q].z, p.z)};
-        hi_[q] = {std::max(hi_[q].x, p.x), std::max(hi_[q].y, p.y), std::max(hi_[q].z, p.z)};
-        used_[q] = true;
+        boxes_[q].add(p);
     }
 }
 

@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "util/vec3.h"
+#include "grain/point_box.h"
 
 namespace nenrin {
 
@@ -24,17 +24,16 @@ public:
     void split();
 
     uint8_t quarterOf(size_t point) const { return split_ ? quarterOf_[point] : 0; }
-    const Vec3& lo(int quarter) const { return lo_[quarter]; }  ///< bounds of its points
-    const Vec3& hi(int quarter) const { return hi_[quarter]; }
-    bool used(int quarter) const { return used_[quarter]; }  ///< false: no point fell in it
+    const Vec3& lo(int quarter) const { return boxes_[quarter].lo; }  ///< bounds of its points
+    const Vec3& hi(int quarter) const { return boxes_[quarter].hi; }
+    bool used(int quarter) const { return !boxes_[quarter].empty(); }  ///< false: no point in it
 
 private:
     std::span<const Vec3> points_;
     Vec3 boxLo_, boxHi_;
     bool split_ = false;
     std::vector<uint8_t> quarterOf_;
-    std::array<Vec3, 4> lo_, hi_;
-    std::array<bool, 4> used_{};
+    std::array<PointBox, 4> boxes_;
 };
 
 }  // namespace nenrin
