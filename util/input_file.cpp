@@ -10,7 +10,8 @@
 
 namespace nenrin {
 
-std::string readInputFile(const std::string& path, uintmax_t maxBytes, const std::string& what) {
+std::string readInputFile(const std::string& path, uintmax_t maxBytes, const std::string& what,
+                          size_t spareBytes) {
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
     if (std::filesystem::is_directory(status))
@@ -23,19 +24,23 @@ std::string readInputFile(const std::string& path, uintmax_t maxBytes, const std
             fmt::format("{}: larger than the {} nenrin reads as {}", formatBytes(double(size)),
                         formatBytes(double(maxBytes)), what));
     };
+    uintmax_t expected = 0;
     if (std::filesystem::is_regular_file(status)) {
         uintmax_t size = std::filesystem::file_size(path, ec);
         if (!ec && size > maxBytes) throw tooLarge(size);
+        if (!ec) expected = size;
     }
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, "", "cannot open the file for reading (does it exist?)");
     std::string bytes;
+    bytes.reserve(static_cast<size_t>(expected) + spareBytes);
     char buffer[1 << 16];
     while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
         bytes.append(buffer, static_cast<size_t>(in.gcount()));
         if (bytes.size() > maxBytes) throw tooLarge(bytes.size());
     }
     if (in.bad()) throw InputError(path, "", "cannot read the file");
+    if (bytes.capacity() < bytes.size() + spareBytes) bytes.reserve(bytes.size() + spareBytes);
     return bytes;
 }
 

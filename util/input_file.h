@@ -10,7 +10,10 @@
 namespace nenrin {
 
 /// The whole file as bytes. `what` is what the reader expected, e.g. "a JSON file" or "an
-/// OBJ file"; `maxBytes` the largest file it takes.
-std::string readInputFile(const std::string& path, uintmax_t maxBytes, const std::string& what);
+/// OBJ file"; `maxBytes` the largest file it takes. The string's capacity has at least
+/// `spareBytes` to spare past the contents: parsers that read past the end in blocks
+/// (simdjson) then need no padded copy.
+std::string readInputFile(const std::string& path, uintmax_t maxBytes, const std::string& what,
+                          size_t spareBytes = 0);
 
 }  // namespace nenrin

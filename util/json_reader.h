@@ -14,13 +14,10 @@
 #include <vector>
 
 #include "util/input_error.h"
+#include "util/json_parse.h"
 #include "util/vec3.h"
 
 namespace nenrin {
-
-/// Limits of nenrin's JSON reading: the deepest nesting and the largest file.
-inline constexpr size_t kMaxJsonDepth = 64;
-inline constexpr uintmax_t kMaxJsonFileBytes = uintmax_t(256) << 20;
 
 /// The largest magnitude of any real number in a nenrin JSON file.
 inline constexpr double kMaxJsonMagnitude = 1e9;
@@ -28,13 +25,8 @@ inline constexpr double kMaxJsonMagnitude = 1e9;
 /// A path written in the JSON file `file`: absolute as it is, else relative to the file's folder.
 std::string pathRelativeTo(const std::string& file, const std::string& path);
 
-/// Reads and parses a JSON file. Missing files and syntax errors (with line and column) throw
-/// InputError.
-nlohmann::json parseJsonFile(const std::string& path);
 /// "a number", "a string", ... for messages such as "expected an object, found a string".
 const char* jsonTypeName(const nlohmann::json& value);
-/// Parses JSON text; `name` stands for the file in error messages.
-nlohmann::json parseJsonText(const std::string& text, const std::string& name);
 
 class JsonReader {
 public:
