@@ -37,6 +37,28 @@ std::string readFile(const std::filesystem::path& path) {
     return s.str();
 }
 
+TEST(JsonParse, JsonDifferenceSeesTypesBitsAndPaths) {
+    using nlohmann::json;
+    EXPECT_EQ(jsonDifference(json::parse(R"({"a": [1, 2.5]})"), json::parse(R"({"a": [1, 2.5]})")),
+              "");
+    // 1 and 1.0 compare equal in nlohmann; not here.
+    EXPECT_NE(jsonDifference(json::parse("[1]"), json::parse("[1.0]")).find("[0]: types differ"),
+              std::string::npos);
+    EXPECT_NE(jsonDifference(json::parse("-0.0"), json::parse("0.0")).find("float bits differ"),
+              std::string::npos);
+    EXPECT_NE(jsonDifference(json::parse(R"({"a": {"b": 1}})"), json::parse(R"({"a": {"c": 1}})"))
+                  .find("a: keys differ"),
+              std::string::npos);
+    EXPECT_NE(
+        jsonDifference(json::parse(R"({"a": {"b": "x"}})"), json::parse(R"({"a": {"b": "y"}})"))
+            .find("a.b: values differ"),
+        std::string::npos);
+    EXPECT_NE(jsonDifference(json::parse("7"), json::parse("-7")).find("types differ"),
+              std::string::npos);
+    // The one allowed difference: a signed and an unsigned 0.
+    EXPECT_EQ(jsonDifference(json::parse("-0"), json::parse("0")), "");
+}
+
 TEST(JsonParse, TakesOrdinaryDocumentsAsNlohmannDoes) {
     for (const char* text : {"0",
                              "-0",
