@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "renderer/camera.h"
+#include "renderer/light_selection.h"
 #include "renderer/lights.h"
 #include "renderer/parallel_tiles.h"
 #include "renderer/ray_scene.h"
@@ -99,6 +100,9 @@ struct PathState {
     uint32_t sample = 0;
     int depth = 0;
     double bsdfPdf = 0;  ///< density of the bounce that made the current ray (for MIS)
+    /// The vertex the current ray left and its geometric normal: where a light the ray finds
+    /// would have been selected from (MIS with light selection).
+    Vec3 lastPosition, lastNormal;
     bool alive = true;
     SurfaceHit hit;
     // Shading inputs worked out per hit.
@@ -141,7 +145,11 @@ struct TileAovs {
 class TileRenderer {
 public:
     TileRenderer(const Scene& scene, const RayScene& rays, const Camera& camera)
-        : scene_(scene), rays_(rays), camera_(camera), env_(environmentLight(scene)) {}
+        : scene_(scene),
+          rays_(rays),
+          camera_(camera),
+          env_(environmentLight(scene)),
+          lightSelection_(scene.lights, scene.settings.lightSelection) {}
 
     void render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats);
 
@@ -173,6 +181,8 @@ private:
     const RayScene& rays_;
     const Camera& camera_;
     const Light* env_;
+    LightSelection lightSelection_;
+    std::vector<double> lightCdf_;  ///< LightSelection::select's scratch
     uint64_t rayCount_ = 0;
     // Scratch, reused by the tiles one thread renders (no allocation per tile).
     std::vector<PathState> paths_;
@@ -693,12 +703,19 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
         if (!path.hit.hit) {
             if (env_) {
                 le = env_->environment->radiance(path.ray.direction);
-                lightPdf = env_->environment->pdf(path.ray.direction);
+                if (!camera)
+                    lightPdf = env_->environment->pdf(path.ray.direction) *
+                               lightSelection_.probability(
+                                   static_cast<size_t>(env_ - scene_.lights.data()),
+                                   path.lastPosition, path.lastNormal);
             }
         } else {
             const Light& l = scene_.lights[path.hit.index];
             le = rectLightRadiance(l, path.ray.direction);
-            lightPdf = rectLightPdf(l, path.ray.direction, path.hit.distance);
+            if (!camera)
+                lightPdf =
+                    rectLightPdf(l, path.ray.direction, path.hit.distance) *
+                    lightSelection_.probability(path.hit.index, path.lastPosition, path.lastNormal);
             if (camera) {
                 aovs.hits[path.pixel] += 1;
                 aovs.depth[path.pixel] +=
@@ -823,14 +840,27 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
         if (path.sample == 0) aovs.lamella[path.pixel] = path.lamella;
     }
 
-    // Next-event estimation: every light, one sample each (scenes have a few lights; this
-    // is far less noisy than picking one of a sun and a sky at random).
+    // Next-event estimation: one sample of every light in lightSelection_.everyVertex() (with a
+    // few lights all of them: far less noisy than picking one of a sun and a sky at random),
+    // and with many local lights one more, picked by its importance here, its sample divided by
+    // the odds of picking it. Sampled light k takes the random pair at lightDims + 2k; the pick
+    // takes the dimension after the last pair.
     const bool continues = path.depth + 1 < settings.maxDepth;
+    const std::vector<uint32_t>& everyVertex = lightSelection_.everyVertex();
+    size_t picked = scene_.lights.size();
+    double pickedProbability = 1;
+    if (lightSelection_.picksOne())
+        picked = lightSelection_.select(path.hit.position, ng,
+                                        rnd(lightDims + kLightDims * (everyVertex.size() + 1)),
+                                        pickedProbability, lightCdf_);
+    const size_t sampled = everyVertex.size() + (picked < scene_.lights.size());
     if (woLocal.z > 0) {
-        for (size_t li = 0; li < scene_.lights.size(); ++li) {
+        for (size_t k = 0; k < sampled; ++k) {
+            const size_t li = k < everyVertex.size() ? everyVertex[k] : picked;
+            const double selected = k < everyVertex.size() ? 1 : pickedProbability;
             const Light& light = scene_.lights[li];
             LightSample ls;
-            uint64_t d = lightDims + kLightDims * li;
+            uint64_t d = lightDims + kLightDims * k;
             const auto [u, v] = pairAt(settings.seed, pixelId, path.sample, dim + d);
             if (!sampleLight(light, path.hit.position, u, v, ls) || dot(ls.direction, ng) <= 0)
                 continue;
@@ -849,9 +879,9 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
             Ray shadow{offsetOrigin(path.hit.position, ng, ls.direction), ls.direction};
             double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
             // MIS only if BSDF sampling can also find this light (not at the last vertex).
-            double w =
-                ls.delta || !continues ? 1 : powerHeuristic(ls.pdf, bsdf.pdf(woLocal, wiLocal));
-            Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * w / ls.pdf);
+            const double pdf = ls.pdf * selected;
+            double w = ls.delta || !continues ? 1 : powerHeuristic(pdf, bsdf.pdf(woLocal, wiLocal));
+            Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * w / pdf);
             // Added by traceShadows if nothing blocks the light.
             shadows_.push_back({index, shadow, tMax, multiply(path.throughput, contribution)});
         }
@@ -881,6 +911,8 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
         return;
     }
     path.bsdfPdf = bs.pdf;
+    path.lastPosition = path.hit.position;
+    path.lastNormal = ng;
     if (bs.roughness >= 1) path.minRoughness = kRegularisedRoughness;
     path.ray = {offsetOrigin(path.hit.position, ng, wi), wi};
     ++path.depth;

@@ -28,6 +28,11 @@ struct CameraSpec {
     double focusDistance = 0;          ///< m: 0 = distance to lookAt
 };
 
+/// Next-event estimation: every light at every vertex, or the sun and sky at every vertex and
+/// one of the point and rectangle lights picked by its importance there
+/// (renderer/light_selection.h); auto picks past 2 point and rectangle lights.
+enum class LightSelectionMode { Auto, All, Importance };
+
 struct RenderSettings {
     int width = 640, height = 400;
     int spp = 16;      ///< samples per pixel; with adaptive sampling, the most a pixel takes
@@ -38,6 +43,7 @@ struct RenderSettings {
     /// over its 3 x 3 neighbourhood) is at most this (docs/render.md#adaptive-sampling).
     double noiseThreshold = 0;
     int minSpp = 0;  ///< samples every pixel takes before the first estimate; 0 = min(spp, 16)
+    LightSelectionMode lightSelection = LightSelectionMode::Auto;
 };
 
 enum class LightType { Distant, Point, Rect, Environment };

@@ -93,6 +93,11 @@ RenderSettings readSettings(JsonReader& r) {
     s.noiseThreshold = r.inRange("noise_threshold", 0, 0, 1);
     s.minSpp = static_cast<int>(r.integer("min_spp", 0, 0, kMaxSpp));
     s.seed = static_cast<uint64_t>(r.integer("seed", 1, 0, (1LL << 53)));
+    const std::string selection =
+        r.choice("light_selection", "auto", {"auto", "all", "importance"});
+    s.lightSelection = selection == "all"          ? LightSelectionMode::All
+                       : selection == "importance" ? LightSelectionMode::Importance
+                                                   : LightSelectionMode::Auto;
     r.finish();
     return s;
 }

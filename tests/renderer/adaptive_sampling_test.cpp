@@ -6,30 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
-#include "renderer/path_tracer.h"
-#include "renderer/scene_file.h"
+#include "tests/renderer/scene_text.h"
 
 namespace nenrin {
 namespace {
-
-namespace fs = std::filesystem;
-
-std::unique_ptr<Scene> sceneFromText(const std::string& name, const std::string& text) {
-    fs::path path = fs::path(::testing::TempDir()) / (name + ".json");
-    std::ofstream(path) << text;
-    return loadScene(path.string());
-}
-
-Film render(const Scene& scene, int threads, RenderStats& stats) {
-    RenderOptions options;
-    options.threads = threads;
-    options.quiet = true;
-    return renderScene(scene, options, stats);
-}
 
 /// A diffuse plane (albedo 0.6) under a constant sky of radiance 1.5: the plane reflects
 /// exactly 0.9, with Monte Carlo noise from sampling the sky; the sky seen directly has none.

@@ -7,15 +7,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <set>
 #include <string>
 
-#include "renderer/path_tracer.h"
 #include "renderer/products/cut_plan.h"
-#include "renderer/scene_file.h"
 #include "shader/surface_bsdf.h"
+#include "tests/renderer/scene_text.h"
 
 namespace nenrin {
 namespace {
@@ -23,26 +21,11 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kSource = NENRIN_SOURCE_DIR;
 
-/// Writes scene JSON text to a temporary file and loads it.
-std::unique_ptr<Scene> sceneFromText(const std::string& name, const std::string& text) {
-    fs::path path = fs::path(::testing::TempDir()) / (name + ".json");
-    std::ofstream(path) << text;
-    return loadScene(path.string());
-}
-
 std::string woodMaterial(const std::string& name, const std::string& finish = "oiled",
                          const std::string& grain = "scenes/grain/species/norway-spruce.json") {
     return "{\"name\": \"" + name + "\", \"type\": \"wood\", \"skeleton\": \"" +
            (kSource / "scenes/skeletons/conifer.json").string() + "\", \"grain\": \"" +
            (kSource / grain).string() + "\", \"finish\": \"" + finish + "\"}";
-}
-
-Film render(const Scene& scene, int threads = 0) {
-    RenderOptions options;
-    options.threads = threads;
-    options.quiet = true;
-    RenderStats stats;
-    return renderScene(scene, options, stats);
 }
 
 double meanChannel(const Film& film, int channel) {
