@@ -9,6 +9,8 @@ namespace nenrin {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+/// Importances are capped so that a sum over a million lights stays finite.
+constexpr double kLargestImportance = 1e300;
 
 double luminance(const Rgb& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
@@ -52,7 +54,9 @@ double LightSelection::importance(const Light& l, const Vec3& p, const Vec3& n) 
             double d2 = lengthSquared(d);
             if (!(d2 > 0)) return 0;
             double c = dot(d, n);
-            return c > 0 ? y * c / (d2 * std::sqrt(d2)) : 0;
+            if (!(c > 0)) return 0;
+            // Right next to the light d^3 underflows: keep the sum finite, the odds sensible.
+            return std::min(y * c / (d2 * std::sqrt(d2)), kLargestImportance);
         }
         case LightType::Rect: {
             // One-sided: p behind the plane sees none of it.

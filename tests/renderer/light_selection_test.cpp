@@ -134,6 +134,21 @@ TEST(LightSelection, ImportanceIsZeroOnlyWhereALightCannotReach) {
     EXPECT_GT(positives, 400);
 }
 
+TEST(LightSelection, OddsStayFiniteRightNextToALight) {
+    // A point 1e-120 m under a point light: intensity x cos / d^2 overflows, d^3 underflows.
+    std::vector<Light> lights = manyLights();
+    lights[3].position = {0, 0, 0};
+    LightSelection selection(lights, LightSelectionMode::Importance);
+    const Vec3 p{0, -1e-120, 0}, up{0, 1, 0};
+    std::vector<double> cdf;
+    double probability = 0;
+    EXPECT_EQ(selection.select(p, up, 0.5, probability, cdf), 3u);
+    EXPECT_GT(probability, 0.99);
+    EXPECT_LE(probability, 1);
+    for (size_t i = 0; i < lights.size(); ++i)
+        EXPECT_TRUE(std::isfinite(selection.probability(i, p, up))) << "light " << i;
+}
+
 TEST(LightSelection, AutoPicksOneLocalLightPastTwo) {
     std::vector<Light> lights = manyLights();  // points 0-11, sun 12, rectangles 13-14, sky 15
     auto everyLight = [](const LightSelection& s, size_t count) {
