@@ -23,14 +23,28 @@ double cosineBound(double cosCentre, double r, double distance) {
     return theta <= 0 ? 1 : std::cos(std::min(theta, kPi / 2));
 }
 
+/// A point light's importance: intensity (luminance y) x cos / d^2.
+double pointImportance(const Vec3& position, double y, const Vec3& p, const Vec3& n) {
+    Vec3 d = position - p;
+    double d2 = lengthSquared(d);
+    if (!(d2 > 0)) return 0;
+    double c = dot(d, n);
+    if (!(c > 0)) return 0;
+    // Right next to the light d^3 underflows: keep the sum finite, the odds sensible.
+    return std::min(y * c / (d2 * std::sqrt(d2)), kLargestImportance);
+}
+
 }  // namespace
 
 LightSelection::LightSelection(const std::vector<Light>& lights, LightSelectionMode mode)
     : lights_(lights) {
-    std::vector<uint32_t> local;
+    std::vector<Local> local;
     for (uint32_t i = 0; i < lights.size(); ++i) {
-        const LightType type = lights[i].type;
-        (type == LightType::Point || type == LightType::Rect ? local : everyVertex_).push_back(i);
+        const Light& l = lights[i];
+        if (l.type == LightType::Point || l.type == LightType::Rect)
+            local.push_back({l.position, luminance(l.power), i, l.type == LightType::Rect});
+        else
+            everyVertex_.push_back(i);
     }
     const bool pick = mode == LightSelectionMode::Importance ||
                       (mode == LightSelectionMode::Auto && local.size() > kEveryLocalLightUpTo);
@@ -49,15 +63,8 @@ double LightSelection::importance(const Light& l, const Vec3& p, const Vec3& n) 
             double c = dot(l.direction, n);
             return c > 0 ? y * c : 0;
         }
-        case LightType::Point: {
-            Vec3 d = l.position - p;
-            double d2 = lengthSquared(d);
-            if (!(d2 > 0)) return 0;
-            double c = dot(d, n);
-            if (!(c > 0)) return 0;
-            // Right next to the light d^3 underflows: keep the sum finite, the odds sensible.
-            return std::min(y * c / (d2 * std::sqrt(d2)), kLargestImportance);
-        }
+        case LightType::Point:
+            return pointImportance(l.position, y, p, n);
         case LightType::Rect: {
             // One-sided: p behind the plane sees none of it.
             double h = dot(p - l.corner, l.normal);
@@ -90,7 +97,7 @@ size_t LightSelection::select(const Vec3& p, const Vec3& n, double u, double& pr
     cdf.resize(count);
     double total = 0;
     for (size_t i = 0; i < count; ++i) {
-        total += importance(lights_[local_[i]], p, n);
+        total += importanceOf(local_[i], p, n);
         cdf[i] = total;
     }
     if (!(total > 0)) return lights_.size();
@@ -100,15 +107,20 @@ size_t LightSelection::select(const Vec3& p, const Vec3& n, double u, double& pr
     if (i >= count) i = count - 1;
     while (i > 0 && cdf[i] == cdf[i - 1]) --i;  // never a zero-importance light at the end
     // Its own importance over the total, exactly as probability() works it out for MIS.
-    probability = importance(lights_[local_[i]], p, n) / total;
-    return local_[i];
+    probability = importanceOf(local_[i], p, n) / total;
+    return local_[i].index;
+}
+
+double LightSelection::importanceOf(const Local& l, const Vec3& p, const Vec3& n) const {
+    return l.rect ? importance(lights_[l.index], p, n)
+                  : pointImportance(l.position, l.luminance, p, n);
 }
 
 double LightSelection::probability(size_t index, const Vec3& p, const Vec3& n) const {
     const LightType type = lights_[index].type;
     if (local_.empty() || (type != LightType::Point && type != LightType::Rect)) return 1;
     double total = 0;
-    for (uint32_t i : local_) total += importance(lights_[i], p, n);
+    for (const Local& l : local_) total += importanceOf(l, p, n);
     return total > 0 ? importance(lights_[index], p, n) / total : 0;
 }
 

@@ -47,9 +47,19 @@ public:
     static double importance(const Light& light, const Vec3& p, const Vec3& n);
 
 private:
+    /// A light select() picks from, with what a point light's importance needs packed in 40
+    /// bytes: the scan over hundreds of them per vertex stays in the L1 cache.
+    struct Local {
+        Vec3 position;
+        double luminance;
+        uint32_t index;
+        bool rect;  ///< importance from lights_[index]
+    };
+    double importanceOf(const Local& light, const Vec3& p, const Vec3& n) const;
+
     const std::vector<Light>& lights_;
     std::vector<uint32_t> everyVertex_;
-    std::vector<uint32_t> local_;  ///< the lights select() picks from; empty: none picked
+    std::vector<Local> local_;  ///< empty: none picked
 };
 
 }  // namespace nenrin
