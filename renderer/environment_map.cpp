@@ -19,8 +19,6 @@ constexpr double kInv4Pi = 1 / (4 * kPi);
 // Lat-long images larger than this are surely a mistake (16k x 16k is 3 GB of float RGB).
 constexpr long long kMaxTexels = 1LL << 28;
 
-double luminance(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
-
 /// Cumulative table of n weights into cdf[0..n]: cdf[0] = 0, cdf[n] = 1, and cdf[k+1] - cdf[k]
 /// (as stored) is the probability of k. Every positive weight keeps a non-zero step even when
 /// it is below the precision of T; all-zero weights give a uniform table.
@@ -190,8 +188,7 @@ void EnvironmentMap::buildDistribution() {
     auto filteredLuminance = [&](int j, std::vector<double>& out) {
         std::vector<double> lum(W);
         for (int i = 0; i < W; ++i) {
-            Rgb t = texel(i, j);
-            lum[i] = luminance(t.r, t.g, t.b);
+            lum[i] = luminance(texel(i, j));
         }
         for (int i = 0; i < W; ++i)
             out[i] = (lum[(i + W - 1) % W] + 6 * lum[i] + lum[(i + 1) % W]) / 8;

@@ -2,17 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
+#include <numbers>
+#include <numeric>
 
 namespace nenrin {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 /// Importances are capped so that a sum over a million lights stays finite.
 constexpr double kLargestImportance = 1e300;
 
-double luminance(const Rgb& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+/// Point and rectangle lights: the ones picked from, rather than sampled at every vertex.
+bool isLocal(LightType type) { return type == LightType::Point || type == LightType::Rect; }
 
 /// The largest cosine to n over a ball of radius r seen from distance `distance` along a unit
 /// direction whose cosine to n is `cosCentre`: the direction tilted towards n by the ball's
@@ -38,21 +40,22 @@ double pointImportance(const Vec3& position, double y, const Vec3& p, const Vec3
 
 LightSelection::LightSelection(const std::vector<Light>& lights, LightSelectionMode mode)
     : lights_(lights) {
-    std::vector<Local> local;
+    const auto localCount =
+        std::count_if(lights.begin(), lights.end(), [](const Light& l) { return isLocal(l.type); });
+    const bool pick = mode == LightSelectionMode::Importance ||
+                      (mode == LightSelectionMode::Auto &&
+                       static_cast<size_t>(localCount) > kEveryLocalLightUpTo);
+    if (!pick) {
+        everyVertex_.resize(lights.size());
+        std::iota(everyVertex_.begin(), everyVertex_.end(), 0u);
+        return;
+    }
     for (uint32_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
-        if (l.type == LightType::Point || l.type == LightType::Rect)
-            local.push_back({l.position, luminance(l.power), i, l.type == LightType::Rect});
+        if (isLocal(l.type))
+            local_.push_back({l.position, luminance(l.power), i, l.type == LightType::Rect});
         else
             everyVertex_.push_back(i);
-    }
-    const bool pick = mode == LightSelectionMode::Importance ||
-                      (mode == LightSelectionMode::Auto && local.size() > kEveryLocalLightUpTo);
-    if (pick) {
-        local_ = std::move(local);
-    } else {
-        everyVertex_.resize(lights.size());
-        for (uint32_t i = 0; i < lights.size(); ++i) everyVertex_[i] = i;
     }
 }
 
@@ -117,8 +120,7 @@ double LightSelection::importanceOf(const Local& l, const Vec3& p, const Vec3& n
 }
 
 double LightSelection::probability(size_t index, const Vec3& p, const Vec3& n) const {
-    const LightType type = lights_[index].type;
-    if (local_.empty() || (type != LightType::Point && type != LightType::Rect)) return 1;
+    if (local_.empty() || !isLocal(lights_[index].type)) return 1;
     double total = 0;
     for (const Local& l : local_) total += importanceOf(l, p, n);
     return total > 0 ? importance(lights_[index], p, n) / total : 0;

@@ -846,15 +846,15 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
     // the odds of picking it. Sampled light k takes the random pair at lightDims + 2k; the pick
     // takes the dimension after the last pair.
     const bool continues = path.depth + 1 < settings.maxDepth;
-    const std::vector<uint32_t>& everyVertex = lightSelection_.everyVertex();
-    size_t picked = scene_.lights.size();
-    double pickedProbability = 1;
-    if (lightSelection_.picksOne())
-        picked = lightSelection_.select(path.hit.position, ng,
-                                        rnd(lightDims + kLightDims * (everyVertex.size() + 1)),
-                                        pickedProbability, lightCdf_);
-    const size_t sampled = everyVertex.size() + (picked < scene_.lights.size());
     if (woLocal.z > 0) {
+        const std::vector<uint32_t>& everyVertex = lightSelection_.everyVertex();
+        size_t picked = scene_.lights.size();
+        double pickedProbability = 1;
+        if (lightSelection_.picksOne())
+            picked = lightSelection_.select(path.hit.position, ng,
+                                            rnd(lightDims + kLightDims * (everyVertex.size() + 1)),
+                                            pickedProbability, lightCdf_);
+        const size_t sampled = everyVertex.size() + (picked < scene_.lights.size());
         for (size_t k = 0; k < sampled; ++k) {
             const size_t li = k < everyVertex.size() ? everyVertex[k] : picked;
             const double selected = k < everyVertex.size() ? 1 : pickedProbability;
