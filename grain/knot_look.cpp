@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "grain/growth_terms.h"
+#include "util/axis_frame.h"
 #include "util/hash.h"
 
 namespace nenrin {
@@ -18,8 +19,8 @@ double checkCoverage(const GrowthSample& s, const ColourParams& c, double u, dou
     const uint64_t chain = static_cast<uint64_t>(s.knotChain);
     if (uniform01(c.microSeed, chain, 1) >= c.deadKnotChecks) return 0;
     const Vec3 a = normalize(s.knotAxisDirection);
-    const Vec3 e1 = normalize(cross(a, std::abs(a.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
-    const Vec3 e2 = cross(a, e1);
+    const AxisFrame frame(a);
+    const Vec3 &e1 = frame.s, &e2 = frame.t;
     const double phi0 = 2 * std::numbers::pi * uniform01(c.microSeed, chain, 2);
     const Vec3 crack = e1 * std::cos(phi0) + e2 * std::sin(phi0);
     const Vec3 across = cross(a, crack);

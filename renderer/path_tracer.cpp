@@ -18,6 +18,7 @@
 #include "renderer/parallel_tiles.h"
 #include "renderer/ray_scene.h"
 #include "shader/surface_bsdf.h"
+#include "util/axis_frame.h"
 #include "util/hash.h"
 #include "util/memory_budget.h"
 #include "util/progress.h"
@@ -61,18 +62,6 @@ double powerHeuristic(double a, double b) {
     double a2 = a * a, b2 = b * b;
     return a2 + b2 > 0 ? a2 / (a2 + b2) : 0;
 }
-
-/// An orthonormal frame around a unit normal.
-struct Frame {
-    Vec3 s, t, n;
-    Frame() = default;
-    explicit Frame(const Vec3& normal) : n(normal) {
-        s = anyPerpendicular(n);
-        t = cross(n, s);
-    }
-    Vec3 toLocal(const Vec3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
-    Vec3 toWorld(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
-};
 
 /// Share of a footprint of diameter `footprint` centred `distance` from the middle of a line
 /// of `width`: the box-filtered glue line, so it neither aliases nor vanishes far away.
@@ -199,7 +188,7 @@ private:
         const WoodSurfaceSample* wood = nullptr;
         Vec3 ng, ns;
         SurfaceBsdf bsdf;
-        Frame frame;
+        AxisFrame frame;
         std::vector<Rgb> lightValue;  ///< BSDF value towards each distant light; r < 0: unknown
     } shared_;
     std::vector<uint8_t> finished_;                      ///< paths that ended this bounce
@@ -745,7 +734,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
                            !(path.glue && path.glueCover > 0);
     const bool reuse = shareable && shared_.wood == wood && shared_.ng == ng;
     SurfaceBsdf bsdf;
-    Frame frame;
+    AxisFrame frame;
     if (reuse) {
         bsdf = shared_.bsdf;
         ns = shared_.ns;
@@ -813,7 +802,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
                 bsdf.metalAlpha = std::max(material.roughness, path.minRoughness);
             }
         }
-        frame = Frame(ns);
+        frame = AxisFrame(ns);
         if (wood && lengthSquared(wood->fibre) > 0) bsdf.fibre = frame.toLocal(wood->fibre);
         if (lengthSquared(texturedFibre) > 0) bsdf.fibre = frame.toLocal(texturedFibre);
         if (shareable) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "shader/value_noise.h"
+#include "util/axis_frame.h"
 
 namespace nenrin {
 
@@ -13,8 +14,8 @@ Rgb barkAlbedo(const GrowthSample& s, const Vec3& p) {
     const Vec3 perp = d - a * dot(d, a);
     const double rho = length(perp);
     if (rho < 1e-6) return {0.06, 0.04, 0.03};
-    const Vec3 e1 = normalize(cross(a, std::abs(a.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
-    const double theta = std::atan2(dot(perp, cross(a, e1)), dot(perp, e1));
+    const AxisFrame frame(a);
+    const double theta = std::atan2(dot(perp, frame.t), dot(perp, frame.s));
     const double arc = theta * rho, z = dot(p, a);
     // Plates ~12 mm across and ~6 cm long, split by fissures; a finer grain on the plates.
     const double plates = valueNoise(0xba4c, arc / 0.012, z / 0.06, rho / 0.01);

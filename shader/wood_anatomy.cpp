@@ -7,6 +7,7 @@
 
 #include "grain/growth_terms.h"
 #include "shader/value_noise.h"
+#include "util/axis_frame.h"
 #include "util/hash.h"
 
 namespace nenrin {
@@ -44,7 +45,7 @@ double raysStarted(double rho) {
     return share;
 }
 
-struct Frame {
+struct WoodFrame {
     double rho, theta, z, T, gradT;  // m, rad, m, years, years/m
     double ft, fr, fz;               // footprint extents along tangential, radial, axial (m)
     // Rings are not circles about the axis (sway, the sun side): a step `dt` along the circle
@@ -64,7 +65,7 @@ struct TubeCell {
     double probability;
 };
 
-double tube(const Frame& f, const TubeCell& c, double tPos, double rPos, long long ring,
+double tube(const WoodFrame& f, const TubeCell& c, double tPos, double rPos, long long ring,
             uint64_t seed, uint64_t salt, Vec3* outward, double* mean) {
     const long long it = (long long)std::floor(tPos / c.tCell);
     const long long ir = (long long)std::floor(rPos / c.rCell) + ring * 1000003;
@@ -121,11 +122,11 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
     const Vec3 a = normalize(axis.direction);
     const Vec3& d = axis.offset;
     const Vec3 perp = d - a * dot(d, a);
-    Frame f;
+    WoodFrame f;
     f.rho = length(perp);
     if (f.rho < 1e-5) return out;
-    const Vec3 e1 = normalize(cross(a, std::abs(a.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
-    const Vec3 e2 = cross(a, e1);
+    const AxisFrame axisFrame(a);
+    const Vec3 &e1 = axisFrame.s, &e2 = axisFrame.t;
     f.theta = std::atan2(dot(perp, e2), dot(perp, e1));
     f.z = dot(point, a);
     f.T = T;

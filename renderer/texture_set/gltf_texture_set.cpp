@@ -130,11 +130,8 @@ std::vector<float> vertexTangents(const TriangleMesh& mesh, const std::vector<Ve
         const Vec3 n =
             normalize(Vec3{float(normals[v].x), float(normals[v].y), float(normals[v].z)});
         Vec3 t = du[v] - n * dot(n, du[v]);
-        if (lengthSquared(t) < 1e-20) {
-            // No uv area here: any direction in the surface.
-            t = std::abs(n.x) < 0.9 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0});
-        }
-        t = normalize(t);
+        // No uv area here: any direction in the surface.
+        t = lengthSquared(t) < 1e-20 ? anyPerpendicular(n) : normalize(t);
         out[4 * v] = float(t.x);
         out[4 * v + 1] = float(t.y);
         out[4 * v + 2] = float(t.z);
