@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "util/limits.h"
+
 namespace nenrin {
 
 /// A CLI11 check for a number option: finite (no nan, inf or overflow to inf) and within
@@ -16,9 +18,6 @@ CLI::Validator finiteRange(double lo, double hi);
 /// --max-memory SIZE ("8G", "512M"): the most memory the command's grids and frames may take
 /// (util/memory_budget.h); by default 80 % of the machine's.
 void addMaxMemoryOption(CLI::App* command);
-
-/// Where nenrin works in tree or scene space (m): no tree and no product is 10 km away.
-inline constexpr double kMaxCoordinate = 1e4;
 
 /// "WxH" or "WxHm": two positive sizes in metres.
 std::pair<double, double> parseSizeMetres(const std::string& text, const std::string& option);

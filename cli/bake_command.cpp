@@ -8,25 +8,19 @@
 #include <memory>
 
 #include "arguments.h"
-#include "grain/grain_params.h"
+#include "grain/grown_tree.h"
 #include "renderer/bake/bake_specs.h"
 #include "renderer/bake/grid_bake.h"
 #include "renderer/bake/grid_writers.h"
 #include "renderer/colour_management.h"
 #include "renderer/farm/split_job.h"
 #include "skeleton/skeleton_file.h"
-#include "skeleton/skeleton_index.h"
 #include "util/input_error.h"
 #include "uv_bake_command.h"
 
 namespace nenrin {
 
 namespace {
-
-// Resolution caps: beyond these a typo (an extra zero) would take hours or all memory.
-constexpr int kMaxSliceSide = 16384;
-constexpr long long kMaxSlicePixels = 1LL << 26;
-constexpr int kMaxVolumeSide = 512;
 
 struct CommonOptions {
     std::string skeleton;
@@ -81,41 +75,37 @@ void makePart(BakedGrid& grid, const CommonOptions& o, JobKind kind, const std::
 
 /// Everything a bake needs, loaded and validated before any output is touched.
 struct LoadedWood {
-    Skeleton skeleton;
-    GrainParams grain;
-    std::unique_ptr<SkeletonIndex> index;
-    std::unique_ptr<GrowthField> field;
+    std::unique_ptr<GrownTree> tree;
     std::unique_ptr<WoodShader> shader;
 };
 
 std::unique_ptr<LoadedWood> loadWood(const CommonOptions& o) {
-    auto w = std::make_unique<LoadedWood>();
-    w->skeleton = loadSkeletonFile(o.skeleton);
-    w->grain = o.grain.empty() ? GrainParams{} : loadGrainFile(o.grain);
+    Skeleton skeleton = loadSkeletonFile(o.skeleton);
+    GrainParams grain = o.grain.empty() ? GrainParams{} : loadGrainFile(o.grain);
     if (o.fellingTime == "auto") {
-        if (w->skeleton.ringWidths().empty())
+        if (skeleton.ringWidths().empty())
             throw InputError("command line", "--felling-time",
                              "'auto' needs a skeleton with ring_widths (its recorded years); "
                              "give the age in years instead");
-        w->grain.fellingTime = static_cast<double>(w->skeleton.ringWidths().size());
+        grain.fellingTime = static_cast<double>(skeleton.ringWidths().size());
     } else if (!o.fellingTime.empty()) {
         char* end = nullptr;
         double t = std::strtod(o.fellingTime.c_str(), &end);
         if (*end != '\0' || !std::isfinite(t) || t < 0)
             throw InputError("command line", "--felling-time",
                              fmt::format("\"{}\": expected years >= 0 or 'auto'", o.fellingTime));
-        w->grain.fellingTime = t;
+        grain.fellingTime = t;
     }
-    w->index = std::make_unique<SkeletonIndex>(w->skeleton);
-    w->field = std::make_unique<GrowthField>(*w->index, w->grain);
-    w->shader = std::make_unique<WoodShader>(*w->field);
+    auto w = std::make_unique<LoadedWood>();
+    w->tree = std::make_unique<GrownTree>(std::move(skeleton), std::move(grain));
+    w->shader = std::make_unique<WoodShader>(w->tree->field());
     return w;
 }
 
 void addMetadata(BakedGrid& grid, const CommonOptions& o, const LoadedWood& w) {
     grid.metadata["version"] = NENRIN_VERSION;
     grid.metadata["skeleton"] = o.skeleton;
-    grid.metadata["grain"] = grainToJson(w.grain).dump();
+    grid.metadata["grain"] = grainToJson(w.tree->grain()).dump();
     grid.metadata["channels"] =
         "R,G,B: scene-linear albedo; A: coverage (0 outside the felled log); T: growth time "
         "(years); knot: branch share (0..1)";
@@ -210,15 +200,15 @@ void addBakeCommands(CLI::App& app) {
         spec.at = at;
         spec.bottom = bottom;
         std::tie(spec.width, spec.height) = parseSizeMetres(size, "--size");
-        std::tie(spec.resX, spec.resY) = parseResolution(res, "--res", kMaxSliceSide);
-        if (static_cast<long long>(spec.resX) * spec.resY > kMaxSlicePixels)
+        std::tie(spec.resX, spec.resY) = parseResolution(res, "--res", kMaxImageSide);
+        if (!imageSizeAllowed(spec.resX, spec.resY))
             throw InputError(
                 "command line", "--res",
-                fmt::format("{} is over the cap of {} M pixels", res, kMaxSlicePixels >> 20));
+                fmt::format("{} is over the cap of {} M pixels", res, kMaxImagePixels >> 20));
         checkOutputName(sliceCommon.output, {".exr"});
         if (!slicePng.empty()) checkOutputName(slicePng, {".png"});
         auto wood = loadWood(sliceCommon);
-        BakedGrid grid = sliceGrid(wood->skeleton, spec);
+        BakedGrid grid = sliceGrid(wood->tree->skeleton(), spec);
         addMetadata(grid, sliceCommon, *wood);
         grid.metadata["slice"] =
             fmt::format("plane={} at={} size={}x{}m bottom={}", slicePlaneName(spec.plane), spec.at,

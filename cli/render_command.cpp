@@ -15,13 +15,6 @@
 
 namespace nenrin {
 
-namespace {
-
-constexpr int kMaxSide = 16384;
-constexpr long long kMaxPixels = 1LL << 26;
-
-}  // namespace
-
 SceneOverrides parseSceneOverrides(const std::vector<std::string>& sets) {
     SceneOverrides overrides;
     for (const std::string& set : sets) {
@@ -57,10 +50,11 @@ void runRender(const RenderJob& o) {
     std::unique_ptr<Scene> scene = loadScene(o.scene, parseSceneOverrides(o.sets));
     RenderSettings& s = scene->settings;
     if (!o.resolution.empty()) {
-        auto [w, h] = parseResolution(o.resolution, "--res", kMaxSide);
-        if (static_cast<long long>(w) * h > kMaxPixels)
-            throw InputError("command line", "--res",
-                             fmt::format("{}x{} is over the {} pixel limit", w, h, kMaxPixels));
+        auto [w, h] = parseResolution(o.resolution, "--res", kMaxImageSide);
+        if (!imageSizeAllowed(w, h))
+            throw InputError(
+                "command line", "--res",
+                fmt::format("{}x{} is over the {} pixel limit", w, h, kMaxImagePixels));
         s.width = w;
         s.height = h;
     }
@@ -132,7 +126,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--spp", o->spp,
                     "Samples per pixel (overrides the scene); with --noise-threshold, the most a "
                     "pixel takes")
-        ->check(CLI::Range(1, 1 << 16));
+        ->check(CLI::Range(1, kMaxSpp));
     cmd->add_option(
            "--noise-threshold", o->noiseThreshold,
            "Adaptive sampling: a pixel stops when the estimated standard error of its mean over "
@@ -143,7 +137,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--min-spp", o->minSpp,
                     "Adaptive sampling: samples every pixel takes before its noise is estimated "
                     "(0 = min(spp, 16); overrides the scene)")
-        ->check(CLI::Range(0, 1 << 16));
+        ->check(CLI::Range(0, kMaxSpp));
     cmd->add_option("--res", o->resolution, "Resolution WxH (overrides the scene), e.g. 640x400");
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024))

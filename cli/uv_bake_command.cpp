@@ -16,8 +16,6 @@ namespace nenrin {
 
 namespace {
 
-constexpr int kMaxSide = 16384;
-
 struct UvBakeCliOptions {
     std::string scene, object, output;
     int resolution = 2048, padding = 8, threads = 0;
@@ -98,7 +96,7 @@ void addUvBakeCommand(CLI::App* bake) {
     cmd->add_option("--object", o->object, "Name of a mesh object with a wood material")
         ->required();
     cmd->add_option("--res", o->resolution, "Map width and height in texels")
-        ->check(CLI::Range(1, kMaxSide))
+        ->check(CLI::Range(1, kMaxImageSide))
         ->default_val(2048);
     cmd->add_option("--padding", o->padding, "Texels of gutter grown past the UV charts")
         ->check(CLI::Range(0, 256))

@@ -8,14 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "grain/growth_field.h"
+#include "grain/grown_tree.h"
 #include "renderer/environment_map.h"
 #include "renderer/geometry/obj_mesh.h"
 #include "renderer/geometry/rigid_transform.h"
 #include "renderer/image_texture.h"
 #include "renderer/products/laminated_product.h"
 #include "shader/wood_shader.h"
-#include "skeleton/skeleton_index.h"
 
 namespace nenrin {
 
@@ -77,10 +76,7 @@ struct Material {
 /// A skeleton with its grain: the tree every wood material of that pair cuts from.
 struct WoodTree {
     std::string skeletonFile, grainFile;
-    Skeleton skeleton;
-    GrainParams grain;
-    std::unique_ptr<SkeletonIndex> index;
-    std::unique_ptr<GrowthField> field;
+    std::unique_ptr<const GrownTree> grown;
 };
 
 enum class ShapeType { Box, Mesh };

@@ -12,15 +12,13 @@
 #include "renderer/products/log_slice.h"
 #include "skeleton/skeleton_file.h"
 #include "util/json_reader.h"
+#include "util/limits.h"
 
 namespace nenrin {
 
 namespace {
 
 // Caps that catch typos (an extra zero) before they cost hours or all memory.
-constexpr int kMaxSide = 16384;
-constexpr long long kMaxPixels = 1LL << 26;
-constexpr int kMaxSpp = 1 << 16;
 constexpr int kMaxLamellae = 100000;
 
 /// A path in the scene file, relative to it; recorded as one of the scene's inputs.
@@ -79,12 +77,12 @@ RenderSettings readSettings(JsonReader& r) {
     if (r.has("resolution")) {
         std::vector<double> res = r.numberList("resolution");
         if (res.size() != 2 || res[0] != std::floor(res[0]) || res[1] != std::floor(res[1]) ||
-            res[0] < 1 || res[1] < 1 || res[0] > kMaxSide || res[1] > kMaxSide ||
-            res[0] * res[1] > double(kMaxPixels))
+            !(std::abs(res[0]) <= kMaxImageSide && std::abs(res[1]) <= kMaxImageSide) ||
+            !imageSizeAllowed(static_cast<long long>(res[0]), static_cast<long long>(res[1])))
             throw r.error("resolution",
                           fmt::format("expected [width, height], whole numbers in 1..{} and at "
                                       "most {} pixels",
-                                      kMaxSide, kMaxPixels));
+                                      kMaxImageSide, kMaxImagePixels));
         s.width = static_cast<int>(res[0]);
         s.height = static_cast<int>(res[1]);
     }
@@ -152,10 +150,7 @@ const WoodTree& woodTree(Scene& scene, const std::string& skeletonFile,
     auto t = std::make_unique<WoodTree>();
     t->skeletonFile = skeletonFile;
     t->grainFile = grainFile;
-    t->skeleton = loadSkeletonFile(skeletonFile);
-    t->grain = grainFile.empty() ? GrainParams{} : loadGrainFile(grainFile);
-    t->index = std::make_unique<SkeletonIndex>(t->skeleton);
-    t->field = std::make_unique<GrowthField>(*t->index, t->grain);
+    t->grown = GrownTree::load(skeletonFile, grainFile);
     scene.trees.push_back(std::move(t));
     return *scene.trees.back();
 }
@@ -176,22 +171,15 @@ Material readMaterial(JsonReader& r, Scene& scene) {
         if (r.has("fibre"))
             m.fibreMap = std::make_shared<ImageTexture>(
                 ImageTexture::load(resolve(scene, r.string("fibre", "")), 3));
-        std::string preset = r.string("finish", "oiled");
-        if (!finishPreset(preset, m.finish))
-            throw r.error("finish", fmt::format("expected one of {}, found \"{}\"",
-                                                finishPresetNames(), preset));
+        m.finish = readFinish(r);
     } else if (type == "wood") {
         m.type = MaterialType::Wood;
         if (!r.has("skeleton")) throw r.error("skeleton", "missing: the skeleton JSON file");
         std::string skeleton = resolve(scene, r.string("skeleton", ""));
         std::string grain = r.has("grain") ? resolve(scene, r.string("grain", "")) : "";
-        Finish finish;
-        std::string preset = r.string("finish", "oiled");
-        if (!finishPreset(preset, finish))
-            throw r.error("finish", fmt::format("expected one of {}, found \"{}\"",
-                                                finishPresetNames(), preset));
+        const Finish finish = readFinish(r);
         const WoodTree& tree = woodTree(scene, skeleton, grain);
-        scene.woodShaders.push_back(std::make_unique<WoodShader>(*tree.field, finish));
+        scene.woodShaders.push_back(std::make_unique<WoodShader>(tree.grown->field(), finish));
         m.wood = scene.woodShaders.back().get();
     } else {
         m.type = type == "diffuse"  ? MaterialType::Diffuse

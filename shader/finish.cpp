@@ -1,5 +1,7 @@
 #include "shader/finish.h"
 
+#include <fmt/format.h>
+
 namespace nenrin {
 
 bool finishPreset(const std::string& name, Finish& f) {
@@ -45,5 +47,14 @@ bool finishPreset(const std::string& name, Finish& f) {
 }
 
 const char* finishPresetNames() { return "matte, oiled, varnished, bare, brushed"; }
+
+Finish readFinish(JsonReader& r) {
+    const std::string preset = r.string("finish", "oiled");
+    Finish finish;
+    if (!finishPreset(preset, finish))
+        throw r.error("finish",
+                      fmt::format("expected one of {}, found \"{}\"", finishPresetNames(), preset));
+    return finish;
+}
 
 }  // namespace nenrin

@@ -1,9 +1,11 @@
 #pragma once
 /// Clear finishes over bare wood: a GGX coat layer (the film of oil or varnish), the strength
 /// and width of the fibre highlight seen through it, and the late-wood relief left after
-/// sanding. Presets carry the values documented in docs/render-format.md.
+/// sanding. Presets carry the values documented in docs/scene-format.md (materials).
 
 #include <string>
+
+#include "util/json_reader.h"
 
 namespace nenrin {
 
@@ -23,5 +25,9 @@ struct Finish {
 bool finishPreset(const std::string& name, Finish& out);
 /// The preset names, comma separated, for error messages.
 const char* finishPresetNames();
+
+/// The "finish" key of a material or shader description: a preset name, "oiled" if absent;
+/// an unknown name is an InputError at that key listing the presets.
+Finish readFinish(JsonReader& reader);
 
 }  // namespace nenrin

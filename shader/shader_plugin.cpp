@@ -18,12 +18,11 @@
 #include <vector>
 
 #include "grain/grain_params.h"
-#include "grain/growth_field.h"
+#include "grain/grown_tree.h"
 #include "nenrin/shader.h"
 #include "shader/finish.h"
 #include "shader/wood_shader.h"
 #include "skeleton/skeleton_file.h"
-#include "skeleton/skeleton_index.h"
 #include "util/input_error.h"
 #include "util/json_reader.h"
 
@@ -191,22 +190,18 @@ public:
         Part skeleton = readPart(r, json, "skeleton", baseDirectory);
         std::optional<Part> grain;
         if (r.has("grain")) grain = readPart(r, json, "grain", baseDirectory);
-        std::string preset = r.string("finish", "oiled");
-        Finish finish;
-        if (!finishPreset(preset, finish))
-            throw r.error("finish", fmt::format("expected one of {}, found \"{}\"",
-                                                finishPresetNames(), preset));
+        const Finish finish = readFinish(r);
         // Every key of the description is checked before any file is read.
         r.finish();
 
-        skeleton_ = skeleton.inlined ? parseInline(*skeleton.inlined, "skeleton", parseSkeleton)
-                                     : loadSkeletonFile(skeleton.file);
+        Skeleton tree = skeleton.inlined ? parseInline(*skeleton.inlined, "skeleton", parseSkeleton)
+                                         : loadSkeletonFile(skeleton.file);
+        GrainParams params;
         if (grain)
-            grain_ = grain->inlined ? parseInline(*grain->inlined, "grain", parseGrain)
+            params = grain->inlined ? parseInline(*grain->inlined, "grain", parseGrain)
                                     : loadGrainFile(grain->file);
-        index_ = std::make_unique<SkeletonIndex>(skeleton_);
-        field_ = std::make_unique<GrowthField>(*index_, grain_);
-        shader_ = std::make_unique<WoodShader>(*field_, finish);
+        tree_ = std::make_unique<GrownTree>(std::move(tree), std::move(params));
+        shader_ = std::make_unique<WoodShader>(tree_->field(), finish);
     }
 
     PluginShader(const PluginShader&) = delete;
@@ -268,10 +263,7 @@ private:
         o.late_wood = static_cast<float>(w.lateWood);
     }
 
-    Skeleton skeleton_;
-    GrainParams grain_;
-    std::unique_ptr<SkeletonIndex> index_;
-    std::unique_ptr<GrowthField> field_;
+    std::unique_ptr<GrownTree> tree_;
     std::unique_ptr<WoodShader> shader_;
     /// Scratch is not part of the shader's state: evaluate() is const and thread-safe.
     mutable ScratchPool pool_;
