@@ -98,7 +98,7 @@ void addBatchCommand(CLI::App& app) {
             job.sets = f.sets;
             job.threads = o->threads;
             job.quiet = o->quiet;
-            runRender(job);
+            runRenderPrinting(job);
             commitOutputs();  // a later frame's failure must not take this one with it
         }
     });

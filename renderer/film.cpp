@@ -29,6 +29,14 @@ std::vector<std::string> filmChannelNames(bool adaptive) {
     return names;
 }
 
+std::string filmChannelDescription(bool adaptive) {
+    std::string text =
+        "R,G,B: scene-linear radiance; A: coverage; albedo; N: world normal; Z: depth along "
+        "the view axis (m); T: growth time (years); knot: 0..1; lamella: board id or -1";
+    if (adaptive) text += "; samples: samples the pixel took";
+    return text;
+}
+
 void writeFilmExr(const Film& film, const std::string& path,
                   const std::map<std::string, std::string>& metadata) {
     const std::vector<std::string> names = filmChannelNames(!film.samples.empty());

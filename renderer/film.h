@@ -32,6 +32,8 @@ struct Film {
 
 /// The EXR channel names of a film, in file order ("samples" only if sampling was adaptive).
 std::vector<std::string> filmChannelNames(bool adaptive);
+/// The same channels in words, for the EXR header (nenrin:channels).
+std::string filmChannelDescription(bool adaptive);
 
 /// Writes all channels as 32-bit float EXR (zip), atomically; `metadata` goes into the header
 /// as nenrin:KEY strings. A band of rows is written as that EXR data window of the frame.

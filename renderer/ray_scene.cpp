@@ -99,7 +99,6 @@ struct RayScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::vector<GeometryRecord> records;
-    size_t triangles = 0;
 
     void addTriangles(const std::vector<Vec3>& positions,
                       const std::vector<std::array<uint32_t, 3>>& tris, GeometryRecord record) {
@@ -127,7 +126,6 @@ struct RayScene::Impl {
                                                              positions[t[2]], record.uvs[t[0]],
                                                              record.uvs[t[1]], record.uvs[t[2]]));
         records.push_back(std::move(record));
-        triangles += tris.size();
     }
 };
 
@@ -172,8 +170,6 @@ RayScene::~RayScene() {
     if (impl_->scene) rtcReleaseScene(impl_->scene);
     if (impl_->device) rtcReleaseDevice(impl_->device);
 }
-
-size_t RayScene::triangleCount() const { return impl_->triangles; }
 
 SurfaceHit RayScene::intersect(const Ray& ray) const {
     RTCIntersectContext context;

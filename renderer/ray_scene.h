@@ -39,9 +39,6 @@ public:
     /// towards one light are coherent). occluded[i] answers ray i.
     void occluded16(const Ray* rays, const double* tMax, int count, bool* occluded) const;
 
-    /// Number of triangles (for the summary).
-    size_t triangleCount() const;
-
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

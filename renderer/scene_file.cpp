@@ -425,6 +425,26 @@ void applyOverrides(nlohmann::json& json, const SceneOverrides& overrides,
 
 }  // namespace
 
+SceneOverrides parseSceneOverrides(const std::vector<std::string>& sets) {
+    SceneOverrides overrides;
+    for (const std::string& set : sets) {
+        const size_t eq = set.find('=');
+        if (eq == std::string::npos || eq == 0 || set[0] != '/')
+            throw InputError("command line", "--set",
+                             fmt::format("\"{}\": expected /json/pointer=VALUE, e.g. "
+                                         "/render/seed=7 or '/camera/position=[1,2,3]'",
+                                         set));
+        nlohmann::json value;
+        try {
+            value = nlohmann::json::parse(set.substr(eq + 1));
+        } catch (const nlohmann::json::exception&) {
+            value = set.substr(eq + 1);  // a bare word is a string: /materials/0/species=sugi
+        }
+        overrides.values.emplace_back(set.substr(0, eq), std::move(value));
+    }
+    return overrides;
+}
+
 std::unique_ptr<Scene> loadScene(const std::string& path, const SceneOverrides& overrides) {
     auto scene = std::make_unique<Scene>();
     scene->file = path;

@@ -20,6 +20,10 @@ struct SceneOverrides {
     std::vector<std::pair<std::string, nlohmann::json>> values;
 };
 
+/// "POINTER=VALUE" strings (`--set`, a batch file's "set") as overrides; VALUE is JSON, or
+/// else a string (/materials/0/species=sugi).
+SceneOverrides parseSceneOverrides(const std::vector<std::string>& sets);
+
 std::unique_ptr<Scene> loadScene(const std::string& path, const SceneOverrides& overrides = {});
 
 }  // namespace nenrin

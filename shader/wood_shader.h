@@ -83,14 +83,11 @@ public:
                          std::span<const SurfaceFootprint> footprints,
                          std::span<WoodSurfaceSample> out, WoodScratch& scratch) const;
 
-    /// Step of the forward differences for grad T (m): 2 % of a ring at the trunk's speed.
-    double gradientStep() const { return gradientStep_; }
-
 private:
     const GrowthField* field_;
     Finish finish_;
     RingProfile rings_;
-    double gradientStep_;
+    double gradientStep_;  ///< of the forward differences for grad T (m): 2 % of a ring
 };
 
 }  // namespace nenrin

@@ -1,4 +1,4 @@
-// The only file that talks to Embree for skeleton queries (see ../shared/design/embree.md):
+// The only file that talks to Embree for skeleton queries (see docs/design/embree.md):
 // curves get no point-query callbacks, so segments are user geometry with a bounds function,
 // and the point-query callback computes the exact distance in double precision with the same
 // function as the brute-force reference.

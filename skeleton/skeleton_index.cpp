@@ -3,7 +3,7 @@
 namespace nenrin {
 
 namespace {
-// Below this many segments a loop beats a BVH traversal (embree.md measurements).
+// Below this many segments a loop beats a BVH traversal (docs/design/embree.md measurements).
 constexpr size_t kBruteForceBelow = 64;
 
 std::unique_ptr<SegmentIndex> makeIndex(SegmentSoup soup, IndexBackend backend) {

@@ -1,7 +1,8 @@
 #pragma once
 /// Geometric questions about a skeleton, answered fast: the nearest trunk segment and the branch
 /// segments within a radius. One index per class (trunk, branch): a single scene would have to
-/// keep its search radius at the larger of the two answers and is ~100x slower (embree.md).
+/// keep its search radius at the larger of the two answers and is ~100x slower
+/// (docs/design/embree.md).
 
 #include <memory>
 

@@ -149,8 +149,8 @@ std::vector<std::string> writeDf3(const BakedGrid& grid, const std::string& path
         if (!f) throw InputError(file, "", "cannot write df3 file (disk full?)");
         written.push_back(file);
     }
-    // The POV-Ray pigment that reassembles the colour (povray.md: exact to 2.8e-4), placed on
-    // the bake box in POV-Ray's own coordinates (the caller maps tree to POV space).
+    // The POV-Ray pigment that reassembles the colour (docs/design/povray.md: exact to 2.8e-4),
+    // placed on the bake box in POV-Ray's own coordinates (the caller maps tree to POV space).
     std::string inc = stem + ".inc";
     outputs.push_back(std::make_unique<AtomicOutput>(inc));
     {

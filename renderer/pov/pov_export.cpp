@@ -248,7 +248,7 @@ std::vector<std::string> exportPovScene(const Scene& scene, const std::string& f
     outputs.push_back(std::make_unique<AtomicOutput>(iniPath));
     {
         std::ofstream f(outputs.back()->temporaryPath());
-        // The deterministic reference settings of povray.md.
+        // The deterministic reference settings of docs/design/povray.md.
         f << fmt::format(
             "; nenrin's reference settings for scene.pov (docs/povray-bridge.md)\n"
             "Input_File_Name=scene.pov\nWidth={}\nHeight={}\nOutput_File_Type=E\n"

@@ -1,7 +1,7 @@
 #pragma once
 /// Laminated timber products as one box each, with the lamella (board) at a point worked out
-/// from the point's coordinates in the box (the fast layout of embree.md: one box per glued
-/// block, 2x faster than a box per lamella).
+/// from the point's coordinates in the box (the fast layout of docs/design/embree.md: one box per
+/// glued block, 2x faster than a box per lamella).
 ///
 /// Product space: the block spans [-size/2, size/2]; x is the product's length, y its
 /// thickness (layers are stacked along y), z its width. Each layer is cut into strips side by

@@ -565,7 +565,21 @@ TEST_F(ShaderPlugin, TruncationKeepsUtf8Whole) {
     EXPECT_STREQ(buffer, "wood-\xc3\xbc");
 }
 
-TEST_F(ShaderPlugin, DestroyAcceptsNull) { plugin().destroy(nullptr); }
+TEST_F(ShaderPlugin, DestroyingNullTouchesNoShader) {
+    // Two live shaders; freeing NULL between evaluations changes neither's results.
+    Created a = create(coniferDescription());
+    Created b = create(coniferDescription());
+    ASSERT_EQ(a.status, NENRIN_OK) << a.message;
+    ASSERT_EQ(b.status, NENRIN_OK) << b.message;
+    const Points points = crossSection(1.13f, 0.15f, 16);
+    const std::vector<nenrin_shading_result> before = evaluate(a.shader.get(), points, nullptr);
+    plugin().destroy(nullptr);
+    b.shader.reset();  // a real destroy of the other one
+    plugin().destroy(nullptr);
+    const std::vector<nenrin_shading_result> after = evaluate(a.shader.get(), points, nullptr);
+    ASSERT_EQ(after.size(), before.size());
+    EXPECT_EQ(std::memcmp(after.data(), before.data(), before.size() * sizeof before[0]), 0);
+}
 
 // --- Threads.
 

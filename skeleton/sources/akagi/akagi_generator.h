@@ -1,9 +1,10 @@
 #pragma once
-/// Akagi & Kitajima's recursive tree generator (paper section 2.4, models.md §5): a root segment
-/// with growth element 100 splits its growth element among BranchNum children (main axis first,
-/// then laterals) by MainGrowth / SubGrowth; a child whose growth element falls below 1 becomes a
-/// leaf cluster; lengths follow the ratio of growth elements, radii the pipe model, directions the
-/// angles, rotation and horizontality; the tree is finally scaled so that its top reaches Height.
+/// Akagi & Kitajima's recursive tree generator (paper section 2.4, docs/design/models.md §5): a
+/// root segment with growth element 100 splits its growth element among BranchNum children (main
+/// axis first, then laterals) by MainGrowth / SubGrowth; a child whose growth element falls below 1
+/// becomes a leaf cluster; lengths follow the ratio of growth elements, radii the pipe model,
+/// directions the angles, rotation and horizontality; the tree is finally scaled so that its top
+/// reaches Height.
 ///
 /// The result is mapped onto a Skeleton: the dominant continuation from the root is the trunk
 /// (chain 0), every other axis a branch chain continued along its own dominant child. Birth times

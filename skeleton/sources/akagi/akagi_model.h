@@ -1,8 +1,9 @@
 #pragma once
 /// Akagi & Kitajima's hierarchical-Bayes model of the 13 tree parameters (paper section 3,
-/// models.md §5), fitted by our own MCMC (Metropolis-within-Gibbs with adaptive random-walk steps)
-/// instead of OpenBUGS, and the posterior-predictive drawing of new parameter sets (section 3.3)
-/// that feeds the generator (akagi_generator.h), with the plausibility check the paper suggests.
+/// docs/design/models.md §5), fitted by our own MCMC (Metropolis-within-Gibbs with adaptive
+/// random-walk steps) instead of OpenBUGS, and the posterior-predictive drawing of new parameter
+/// sets (section 3.3) that feeds the generator (akagi_generator.h), with the plausibility check the
+/// paper suggests.
 ///
 /// Per parameter i (all fitted independently: the observed parameters are data):
 ///   angles P7, P8, P10:  P_i ~ Normal(W_i0 + sum_j W_ij P_j + ID_i[tree], sigma_i)

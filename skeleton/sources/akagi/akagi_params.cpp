@@ -10,6 +10,13 @@ namespace nenrin {
 
 namespace {
 
+/// Unit and allowed range of a parameter, for messages.
+struct AkagiParamRange {
+    double lo, hi;
+    bool loInclusive;
+    const char* unit;
+};
+
 // Shares must stay below 1 or an axis never runs out of growth element; counts need one child.
 const std::array<AkagiParamRange, kAkagiParamCount> kRanges = {{
     {0, 200, false, "m"},         // Height
@@ -58,8 +65,6 @@ int akagiParamIndex(const std::string& name) {
         if (name == names[i]) return i;
     return -1;
 }
-
-const AkagiParamRange& akagiParamRange(int i) { return kRanges[i]; }
 
 std::string akagiParamProblem(int i, double value) {
     const AkagiParamRange& r = kRanges[i];

@@ -1,8 +1,8 @@
 #pragma once
-/// Akagi & Kitajima's 13 tree parameters (models.md §5, paper section 2.3): the whole description
-/// of a tree's form in their generator. Lengths in metres, angles in degrees (the unit of the
-/// observation tables), shares and ratios unitless. The index order P1..P13 is the paper's and is
-/// used by the statistical model (akagi_model.h) and the observation tables.
+/// Akagi & Kitajima's 13 tree parameters (docs/design/models.md §5, paper section 2.3): the whole
+/// description of a tree's form in their generator. Lengths in metres, angles in degrees (the unit
+/// of the observation tables), shares and ratios unitless. The index order P1..P13 is the paper's
+/// and is used by the statistical model (akagi_model.h) and the observation tables.
 
 #include <array>
 #include <nlohmann/json.hpp>
@@ -39,14 +39,6 @@ struct AkagiParams {
 const std::array<const char*, kAkagiParamCount>& akagiParamNames();
 /// Index 0..12 of a parameter name, or -1.
 int akagiParamIndex(const std::string& name);
-/// Unit and allowed range of each parameter, for messages and docs.
-struct AkagiParamRange {
-    double lo, hi;
-    bool loInclusive;
-    const char* unit;
-};
-const AkagiParamRange& akagiParamRange(int i);
-
 /// Empty if the value is allowed for parameter i, else what was expected ("a number in (0, 1)").
 std::string akagiParamProblem(int i, double value);
 /// Throws InputError naming `source` and the parameter if any value is NaN or out of range.

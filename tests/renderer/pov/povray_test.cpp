@@ -1,5 +1,5 @@
 // The POV-Ray twins (scenes/povray/): each pair rendered small by nenrin and by POV-Ray 3.7
-// with the reference options of povray.md, then compared by statistics with written
+// with the reference options of docs/design/povray.md, then compared by statistics with written
 // thresholds (POV-Ray is another renderer: not per-pixel equality). Measured when written
 // (160 x 120): rings RMSE 0.0054 / mean 0.0030; Lambert box 0.0026 / 0.00036; glulam block
 // from df3 0.0050 / 0.0016. Skipped, saying so, only if povray is not installed.
