@@ -259,6 +259,127 @@ RigidTransform readLogPlacement(JsonReader& parent) {
     return t;
 }
 
+/// A box's size, or a mesh's triangles (OBJ or glTF, scaled).
+void readPlainShape(JsonReader& r, Scene& scene, SceneObject& o) {
+    if (o.type == "box") {
+        o.size = r.requireVec3("size");
+        if (!(o.size.x > 0 && o.size.y > 0 && o.size.z > 0))
+            throw r.error("size", "expected three sizes > 0");
+        return;
+    }
+    o.shape = ShapeType::Mesh;
+    if (!r.has("file")) throw r.error("file", "missing: the OBJ or glTF file");
+    const std::string file = resolve(scene, r.string("file", ""));
+    auto mesh =
+        std::make_shared<TriangleMesh>(isGltfPath(file) ? loadGltfMesh(file) : loadObjMesh(file));
+    double scale = r.positive("scale", 1);
+    for (Vec3& p : mesh->positions) p = p * scale;
+    o.mesh = mesh;
+}
+
+/// A disc cut across the trunk at a height, with its bark and radial checks.
+void readLogSlice(JsonReader& r, const GrowthField& field, SceneObject& o) {
+    LogSliceParams slice;
+    slice.height = r.requireNumber("height");
+    slice.thickness = r.positive("thickness", slice.thickness);
+    slice.bark = r.nonNegative("bark", slice.bark);
+    slice.maxRadius = r.positive("max_radius", slice.maxRadius);
+    if (auto c = r.object("checks")) {
+        slice.checks = static_cast<int>(c->integer("count", slice.checks, 0, 64));
+        slice.checkDepth = c->inRange("depth", slice.checkDepth, 0, 0.9);
+        slice.checkWidth = c->inRange("width", slice.checkWidth, 0, 0.05);
+        slice.checkSeed = static_cast<uint64_t>(c->integer("seed", 1, 0, 1LL << 53));
+        c->finish();
+    }
+    double lo, hi;
+    trunkHeightRange(field.skeleton(), lo, hi);
+    if (slice.height - 0.5 * slice.thickness < lo || slice.height + 0.5 * slice.thickness > hi)
+        throw r.error("height", fmt::format("the slice must lie on the trunk, between {:.3g} "
+                                            "and {:.3g} m",
+                                            lo, hi));
+    o.shape = ShapeType::Mesh;
+    o.mesh = std::make_shared<TriangleMesh>(logSliceMesh(field, slice));
+    o.treeFromObject = logSliceTreeFromObject(field, slice);
+}
+
+/// A glulam beam: lamellae stacked, each of finger-jointed pieces (or whole boards).
+std::shared_ptr<LaminatedLayout> readGlulam(JsonReader& r, const GrowthField& field,
+                                            int32_t& nextLamella) {
+    int count = static_cast<int>(r.integer("lamellae", 6, 1, 200));
+    double thickness = r.positive("lamella_thickness", 0.04);
+    double width = r.positive("width", 0.14);
+    double length = r.positive("length", 2.0);
+    double minPiece = 0, maxPiece = 0;
+    FingerJointProfile fingers;
+    if (r.isBoolean("finger_joints")) {
+        if (r.boolean("finger_joints", false))
+            throw r.error("finger_joints", "expected false or an object {min_length, ...}");
+    } else if (auto f = r.object("finger_joints")) {
+        minPiece = f->positive("min_length", 0.9);
+        maxPiece = f->positive("max_length", 2.4);
+        if (maxPiece < minPiece) throw f->error("max_length", "must be >= min_length");
+        // Checked before the layout is drawn: 1e-6 m pieces once grew to 24 GB.
+        double boards = count * std::ceil(length / minPiece);
+        if (boards > kMaxLamellae)
+            throw f->error("min_length",
+                           fmt::format("{} m pieces of {} lamellae {} m long could make {:.3g} "
+                                       "boards: expected at most {}",
+                                       minPiece, count, length, boards, kMaxLamellae));
+        fingers.length = f->nonNegative("finger_length", fingers.length);
+        fingers.pitch = f->positive("pitch", fingers.pitch);
+        f->finish();
+    }
+    CutPlanParams plan = readCutPlan(r);
+    auto layout = std::make_shared<LaminatedLayout>(
+        glulamLayout(count, thickness, width, length, minPiece, maxPiece, plan.seed));
+    layout->fingers = fingers;
+    cutLamellae(*layout, field, plan, nextLamella, r);
+    return layout;
+}
+
+/// Cross-laminated timber: an odd number of layers of boards, each crossing the one below.
+std::shared_ptr<LaminatedLayout> readClt(JsonReader& r, const GrowthField& field,
+                                         int32_t& nextLamella) {
+    int layers = static_cast<int>(r.integer("layers", 5, 1, 99));
+    if (layers % 2 == 0) throw r.error("layers", "expected an odd number of crossed layers");
+    double thickness = r.positive("layer_thickness", 0.03);
+    double boardWidth = r.positive("board_width", 0.15);
+    double length = r.positive("length", 1.2), width = r.positive("width", 0.9);
+    if (std::ceil(length / boardWidth) * std::ceil(width / boardWidth) * layers > kMaxLamellae)
+        throw r.error("board_width", "too many boards (over 100000)");
+    CutPlanParams plan = readCutPlan(r);
+    auto layout =
+        std::make_shared<LaminatedLayout>(cltLayout(layers, thickness, boardWidth, length, width));
+    cutLamellae(*layout, field, plan, nextLamella, r);
+    return layout;
+}
+
+/// A table top: boards glued edge to edge.
+std::shared_ptr<LaminatedLayout> readTableTop(JsonReader& r, const GrowthField& field,
+                                              int32_t& nextLamella) {
+    int boards = static_cast<int>(r.integer("boards", 6, 1, 1000));
+    double thickness = r.positive("thickness", 0.03);
+    double width = r.positive("width", 0.8), length = r.positive("length", 1.6);
+    CutPlanParams plan = readCutPlan(r);
+    auto layout =
+        std::make_shared<LaminatedLayout>(edgeGluedLayout(boards, thickness, width, length));
+    cutLamellae(*layout, field, plan, nextLamella, r);
+    return layout;
+}
+
+/// The glue lines of a laminated product: width and colour.
+void readGlue(JsonReader& r, LaminatedLayout& layout) {
+    if (auto g = r.object("glue")) {
+        layout.glue.width = g->nonNegative("width", layout.glue.width);
+        Rgb c = colourOf(*g, "colour",
+                         {layout.glue.colour[0], layout.glue.colour[1], layout.glue.colour[2]});
+        layout.glue.colour[0] = c.r;
+        layout.glue.colour[1] = c.g;
+        layout.glue.colour[2] = c.b;
+        g->finish();
+    }
+}
+
 SceneObject readObject(JsonReader& r, Scene& scene,
                        const std::map<std::string, uint32_t>& materials, int32_t& nextLamella) {
     SceneObject o;
@@ -276,118 +397,24 @@ SceneObject readObject(JsonReader& r, Scene& scene,
     const bool wood = material.type == MaterialType::Wood;
 
     if (o.type == "box" || o.type == "mesh") {
-        if (o.type == "box") {
-            o.size = r.requireVec3("size");
-            if (!(o.size.x > 0 && o.size.y > 0 && o.size.z > 0))
-                throw r.error("size", "expected three sizes > 0");
-        } else {
-            o.shape = ShapeType::Mesh;
-            if (!r.has("file")) throw r.error("file", "missing: the OBJ or glTF file");
-            const std::string file = resolve(scene, r.string("file", ""));
-            auto mesh = std::make_shared<TriangleMesh>(isGltfPath(file) ? loadGltfMesh(file)
-                                                                        : loadObjMesh(file));
-            double scale = r.positive("scale", 1);
-            for (Vec3& p : mesh->positions) p = p * scale;
-            o.mesh = mesh;
-        }
+        readPlainShape(r, scene, o);
         if (wood) o.treeFromObject = readLogPlacement(r);
-        r.finish();
-        return o;
-    }
-
-    if (o.type == "log_slice") {
+    } else if (o.type == "log_slice") {
         if (!wood) throw r.error("material", "a log slice needs a wood material");
-        LogSliceParams slice;
-        slice.height = r.requireNumber("height");
-        slice.thickness = r.positive("thickness", slice.thickness);
-        slice.bark = r.nonNegative("bark", slice.bark);
-        slice.maxRadius = r.positive("max_radius", slice.maxRadius);
-        if (auto c = r.object("checks")) {
-            slice.checks = static_cast<int>(c->integer("count", slice.checks, 0, 64));
-            slice.checkDepth = c->inRange("depth", slice.checkDepth, 0, 0.9);
-            slice.checkWidth = c->inRange("width", slice.checkWidth, 0, 0.05);
-            slice.checkSeed = static_cast<uint64_t>(c->integer("seed", 1, 0, 1LL << 53));
-            c->finish();
-        }
-        const GrowthField& field = material.wood->field();
-        double lo, hi;
-        trunkHeightRange(field.skeleton(), lo, hi);
-        if (slice.height - 0.5 * slice.thickness < lo || slice.height + 0.5 * slice.thickness > hi)
-            throw r.error("height", fmt::format("the slice must lie on the trunk, between {:.3g} "
-                                                "and {:.3g} m",
-                                                lo, hi));
-        o.shape = ShapeType::Mesh;
-        o.mesh = std::make_shared<TriangleMesh>(logSliceMesh(field, slice));
-        o.treeFromObject = logSliceTreeFromObject(field, slice);
-        r.finish();
-        return o;
-    }
-    if (!wood)
-        throw r.error("material",
-                      fmt::format("a {} is made of boards: it needs a wood material", o.type));
-    std::shared_ptr<LaminatedLayout> layout;
-    if (o.type == "glulam") {
-        int count = static_cast<int>(r.integer("lamellae", 6, 1, 200));
-        double thickness = r.positive("lamella_thickness", 0.04);
-        double width = r.positive("width", 0.14);
-        double length = r.positive("length", 2.0);
-        double minPiece = 0, maxPiece = 0;
-        FingerJointProfile fingers;
-        if (r.isBoolean("finger_joints")) {
-            if (r.boolean("finger_joints", false))
-                throw r.error("finger_joints", "expected false or an object {min_length, ...}");
-        } else if (auto f = r.object("finger_joints")) {
-            minPiece = f->positive("min_length", 0.9);
-            maxPiece = f->positive("max_length", 2.4);
-            if (maxPiece < minPiece) throw f->error("max_length", "must be >= min_length");
-            // Checked before the layout is drawn: 1e-6 m pieces once grew to 24 GB.
-            double boards = count * std::ceil(length / minPiece);
-            if (boards > kMaxLamellae)
-                throw f->error("min_length",
-                               fmt::format("{} m pieces of {} lamellae {} m long could make {:.3g} "
-                                           "boards: expected at most {}",
-                                           minPiece, count, length, boards, kMaxLamellae));
-            fingers.length = f->nonNegative("finger_length", fingers.length);
-            fingers.pitch = f->positive("pitch", fingers.pitch);
-            f->finish();
-        }
-        CutPlanParams plan = readCutPlan(r);
-        layout = std::make_shared<LaminatedLayout>(
-            glulamLayout(count, thickness, width, length, minPiece, maxPiece, plan.seed));
-        layout->fingers = fingers;
-        cutLamellae(*layout, material.wood->field(), plan, nextLamella, r);
-    } else if (o.type == "clt") {
-        int layers = static_cast<int>(r.integer("layers", 5, 1, 99));
-        if (layers % 2 == 0) throw r.error("layers", "expected an odd number of crossed layers");
-        double thickness = r.positive("layer_thickness", 0.03);
-        double boardWidth = r.positive("board_width", 0.15);
-        double length = r.positive("length", 1.2), width = r.positive("width", 0.9);
-        if (std::ceil(length / boardWidth) * std::ceil(width / boardWidth) * layers > kMaxLamellae)
-            throw r.error("board_width", "too many boards (over 100000)");
-        CutPlanParams plan = readCutPlan(r);
-        layout = std::make_shared<LaminatedLayout>(
-            cltLayout(layers, thickness, boardWidth, length, width));
-        cutLamellae(*layout, material.wood->field(), plan, nextLamella, r);
+        readLogSlice(r, material.wood->field(), o);
     } else {
-        int boards = static_cast<int>(r.integer("boards", 6, 1, 1000));
-        double thickness = r.positive("thickness", 0.03);
-        double width = r.positive("width", 0.8), length = r.positive("length", 1.6);
-        CutPlanParams plan = readCutPlan(r);
-        layout =
-            std::make_shared<LaminatedLayout>(edgeGluedLayout(boards, thickness, width, length));
-        cutLamellae(*layout, material.wood->field(), plan, nextLamella, r);
+        if (!wood)
+            throw r.error("material",
+                          fmt::format("a {} is made of boards: it needs a wood material", o.type));
+        const GrowthField& field = material.wood->field();
+        std::shared_ptr<LaminatedLayout> layout =
+            o.type == "glulam" ? readGlulam(r, field, nextLamella)
+            : o.type == "clt"  ? readClt(r, field, nextLamella)
+                               : readTableTop(r, field, nextLamella);
+        readGlue(r, *layout);
+        o.size = layout->size;
+        o.layout = layout;
     }
-    if (auto g = r.object("glue")) {
-        layout->glue.width = g->nonNegative("width", layout->glue.width);
-        Rgb c = colourOf(*g, "colour",
-                         {layout->glue.colour[0], layout->glue.colour[1], layout->glue.colour[2]});
-        layout->glue.colour[0] = c.r;
-        layout->glue.colour[1] = c.g;
-        layout->glue.colour[2] = c.b;
-        g->finish();
-    }
-    o.size = layout->size;
-    o.layout = layout;
     r.finish();
     return o;
 }

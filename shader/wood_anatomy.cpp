@@ -113,18 +113,16 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const GrowthSample& s, const V
                        diameter, weight);
 }
 
-AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, double T,
-                          const Vec3& point, const Vec3& gradT, const Vec3& dpdx, const Vec3& dpdy,
-                          double diameter, double weight) {
-    AnatomySample out;
-    if (!p.enabled || weight <= 0) return out;
-    // The local wood frame about the axis.
+namespace {
+
+/// The local wood frame about the axis at `point`; false on the axis itself.
+bool woodFrameAt(const AnatomyAxis& axis, double T, const Vec3& point, const Vec3& gradT,
+                 const Vec3& dpdx, const Vec3& dpdy, double diameter, WoodFrame& f) {
     const Vec3 a = normalize(axis.direction);
     const Vec3& d = axis.offset;
     const Vec3 perp = d - a * dot(d, a);
-    WoodFrame f;
     f.rho = length(perp);
-    if (f.rho < 1e-5) return out;
+    if (f.rho < 1e-5) return false;
     const AxisFrame axisFrame(a);
     const Vec3 &e1 = axisFrame.s, &e2 = axisFrame.t;
     f.theta = std::atan2(dot(perp, e2), dot(perp, e1));
@@ -139,21 +137,20 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
     f.ft = extent(f.t), f.fr = extent(f.r), f.fz = extent(a);
     const double gt = dot(gradT, f.t), gr = dot(gradT, f.r);
     if (gr > 0.2 * f.gradT) f.scale = f.gradT / gr, f.shear = gt / gr;
-    const double arc = f.rho * f.theta;   // tangential position (m)
-    const double radial = f.T / f.gradT;  // radial position (m), rings at their true spacing
-    const double phase = f.T - std::floor(f.T);
+    return true;
+}
 
-    // Fibre streaks: long along the fibre, narrow across it.
-    double fibre = 0;
-    {
-        const double keep = std::min(detail(f.ft, p.fibreWidth), detail(f.fr, p.fibreWidth));
-        if (keep > 0)
-            fibre =
-                keep * p.fibreAmplitude *
-                valueNoise(p.seed, arc / p.fibreWidth, f.rho / p.fibreWidth, f.z / p.fibreLength);
-    }
+/// Fibre streaks: long along the fibre, narrow across it.
+double fibreStreaks(const AnatomyParams& p, const WoodFrame& f, double arc) {
+    const double keep = std::min(detail(f.ft, p.fibreWidth), detail(f.fr, p.fibreWidth));
+    if (keep <= 0) return 0;
+    return keep * p.fibreAmplitude *
+           valueNoise(p.seed, arc / p.fibreWidth, f.rho / p.fibreWidth, f.z / p.fibreLength);
+}
 
-    // Vessels.
+/// Vessels: their filtered coverage; `relief` gets the pit's slope.
+double vessels(const AnatomyParams& p, const WoodFrame& f, double arc, double radial, double phase,
+               Vec3& relief) {
     double pore = 0;
     if (p.pores != PoreKind::None) {
         const bool ringPorous = p.pores == PoreKind::RingPorous;
@@ -183,12 +180,16 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
                 std::min(detail(std::max(f.ft, f.fr), p.poreSpacing), detail(f.fz, c.zCell));
             pore = keep * cov + (1 - keep) * mean;
             // The open pore is a pit: the relief falls towards its axis.
-            out.reliefGradient = outward * (keep * p.poreDepth * cov * (1 - cov) * 4);
+            relief = outward * (keep * p.poreDepth * cov * (1 - cov) * 4);
         }
     }
 
-    // Rays: sheets of constant azimuth; more of them further out (new rays start as the
-    // circumference grows), so their spacing stays near raySpacing.
+    return pore;
+}
+
+/// Rays: sheets of constant azimuth; more of them further out (new rays start as the
+/// circumference grows), so their spacing stays near raySpacing.
+double rays(const AnatomyParams& p, const WoodFrame& f) {
     double ray = 0;
     if (p.rayWidth > 0 && p.raySpacing > 0) {
         const int base = std::max(8, (int)std::lround(kTwoPi * 0.05 / p.raySpacing));
@@ -226,7 +227,12 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
         }
     }
 
-    // Resin canals: sparse ducts in the late wood.
+    return ray;
+}
+
+/// Resin canals: sparse ducts in the late wood.
+double resinCanals(const AnatomyParams& p, const WoodFrame& f, double arc, double radial,
+                   double phase) {
     double resin = 0;
     if (p.resinSpacing > 0 && phase > 0.55) {
         TubeCell c{p.resinSpacing,
@@ -242,6 +248,25 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
         resin = keep * cov + (1 - keep) * mean;
     }
 
+    return resin;
+}
+
+}  // namespace
+
+AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, double T,
+                          const Vec3& point, const Vec3& gradT, const Vec3& dpdx, const Vec3& dpdy,
+                          double diameter, double weight) {
+    AnatomySample out;
+    if (!p.enabled || weight <= 0) return out;
+    WoodFrame f;
+    if (!woodFrameAt(axis, T, point, gradT, dpdx, dpdy, diameter, f)) return out;
+    const double arc = f.rho * f.theta;   // tangential position (m)
+    const double radial = f.T / f.gradT;  // radial position (m), rings at their true spacing
+    const double phase = f.T - std::floor(f.T);
+    const double fibre = fibreStreaks(p, f, arc);
+    const double pore = vessels(p, f, arc, radial, phase, out.reliefGradient);
+    const double ray = rays(p, f);
+    const double resin = resinCanals(p, f, arc, radial, phase);
     const double b = (1 + weight * fibre) * (1 + weight * p.rayContrast * ray) *
                      (1 - weight * p.poreDarkening * pore) *
                      (1 - weight * p.resinDarkening * resin);

@@ -209,7 +209,10 @@ bool isGltfPath(const std::string& path) {
     return ext == ".gltf" || ext == ".glb";
 }
 
-TriangleMesh loadGltfMesh(const std::string& path) {
+namespace {
+
+/// The file as tinygltf reads it (buffers through nenrin's input rules, images not decoded).
+tinygltf::Model readModel(const std::string& path) {
     const std::string bytes = readInputFile(path, kMaxGltfFileBytes, "a glTF file");
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(noImageDecoding, nullptr);
@@ -228,8 +231,13 @@ TriangleMesh loadGltfMesh(const std::string& path) {
         throw InputError(
             path, "",
             "tinygltf cannot read the file: " + oneLine(err.empty() ? "unknown error" : err));
+    return model;
+}
 
-    // Which meshes, with which transforms: the scene's node trees.
+/// Which meshes, with which transforms: the default scene's node trees (every mesh once,
+/// untransformed, in a file without scenes).
+std::vector<std::pair<int, Matrix>> meshInstances(const tinygltf::Model& model,
+                                                  const std::string& path) {
     std::vector<std::pair<int, Matrix>> instances;
     auto visit = [&](auto&& self, int node, const Matrix& parent, int level) -> void {
         if (node < 0 || node >= int(model.nodes.size()))
@@ -250,97 +258,100 @@ TriangleMesh loadGltfMesh(const std::string& path) {
     } else {
         for (int m = 0; m < int(model.meshes.size()); ++m) instances.push_back({m, identity()});
     }
+    return instances;
+}
 
-    TriangleMesh mesh;
-    Reader reader(path, model);
-    int withNormals = 0, withUvs = 0, primitives = 0;
-    for (const auto& [meshIndex, world] : instances) {
-        if (meshIndex >= int(model.meshes.size()))
-            throw InputError(path, fmt::format("mesh {}", meshIndex), "the mesh does not exist");
-        const tinygltf::Mesh& m = model.meshes[meshIndex];
-        const bool mirrored = determinant(world) < 0;
-        for (size_t p = 0; p < m.primitives.size(); ++p) {
-            const tinygltf::Primitive& prim = m.primitives[p];
-            if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;
-            const std::string where =
-                fmt::format("mesh {} (\"{}\"), primitive {}", meshIndex, m.name, p);
-            auto attribute = [&](const char* name) {
-                auto it = prim.attributes.find(name);
-                return it == prim.attributes.end() ? -1 : it->second;
-            };
-            if (attribute("POSITION") < 0)
-                throw InputError(path, where, "expected a POSITION attribute");
-            std::vector<double> pos =
-                reader.read(attribute("POSITION"), TINYGLTF_TYPE_VEC3, where + ", POSITION");
-            const size_t count = pos.size() / 3;
-            std::vector<double> nrm, uv;
-            if (attribute("NORMAL") >= 0)
-                nrm = reader.read(attribute("NORMAL"), TINYGLTF_TYPE_VEC3, where + ", NORMAL");
-            if (attribute("TEXCOORD_0") >= 0)
-                uv = reader.read(attribute("TEXCOORD_0"), TINYGLTF_TYPE_VEC2,
-                                 where + ", TEXCOORD_0");
-            if ((!nrm.empty() && nrm.size() != pos.size()) ||
-                (!uv.empty() && uv.size() / 2 != count))
-                throw InputError(
-                    path, where,
-                    "expected NORMAL and TEXCOORD_0 with as many elements as POSITION");
-            std::vector<double> idx;
-            if (prim.indices >= 0) {
-                // glTF indices are unsigned integers; a float accessor (found by fuzzing: an
-                // index of -2.9e36) is refused here, and every value is range-checked below.
-                if (prim.indices < int(model.accessors.size())) {
-                    const int type = model.accessors[prim.indices].componentType;
-                    if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-                        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-                        throw InputError(
-                            path, fmt::format("{}, indices, accessor {}", where, prim.indices),
-                            "expected unsigned byte, short or int indices");
-                }
-                idx = reader.read(prim.indices, TINYGLTF_TYPE_SCALAR, where + ", indices");
-            } else {
-                idx.resize(count);
-                for (size_t i = 0; i < count; ++i) idx[i] = double(i);
-            }
-            if (idx.size() % 3 != 0)
-                throw InputError(path, where,
-                                 fmt::format("{} indices: expected a multiple of 3", idx.size()));
-            ++primitives;
-            withNormals += !nrm.empty();
-            withUvs += !uv.empty();
-            const uint32_t first = static_cast<uint32_t>(mesh.positions.size());
-            for (size_t i = 0; i < count; ++i) {
-                mesh.positions.push_back(
-                    transformPoint(world, {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]}));
-                if (!nrm.empty()) {
-                    Vec3 n = transformNormal(world, {nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]});
-                    mesh.normals.push_back(lengthSquared(n) > 0 ? normalize(n) : Vec3{0, 0, 1});
-                }
-                if (!uv.empty()) mesh.uvs.push_back({uv[2 * i], 1 - uv[2 * i + 1]});
-            }
-            for (size_t t = 0; t < idx.size(); t += 3) {
-                std::array<uint32_t, 3> tri;
-                for (int c = 0; c < 3; ++c) {
-                    if (!(idx[t + c] >= 0 && idx[t + c] < double(count)))
-                        throw InputError(path, where,
-                                         fmt::format("index {} (triangle {}) is past the {} "
-                                                     "vertices",
-                                                     idx[t + c], t / 3, count));
-                    tri[c] = first + static_cast<uint32_t>(idx[t + c]);
-                }
-                if (mirrored) std::swap(tri[1], tri[2]);
-                mesh.triangles.push_back(tri);
-            }
-            if (mesh.positions.size() > (size_t(1) << 31))
-                throw InputError(path, where, "more than 2^31 vertices");
+/// A primitive's triangle indices: its index accessor's, or 0, 1, 2, ... without one.
+std::vector<double> primitiveIndices(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                     Reader& reader, size_t count, const std::string& path,
+                                     const std::string& where) {
+    std::vector<double> idx;
+    if (prim.indices >= 0) {
+        // glTF indices are unsigned integers; a float accessor (found by fuzzing: an
+        // index of -2.9e36) is refused here, and every value is range-checked later.
+        if (prim.indices < int(model.accessors.size())) {
+            const int type = model.accessors[prim.indices].componentType;
+            if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                throw InputError(path, fmt::format("{}, indices, accessor {}", where, prim.indices),
+                                 "expected unsigned byte, short or int indices");
         }
+        idx = reader.read(prim.indices, TINYGLTF_TYPE_SCALAR, where + ", indices");
+    } else {
+        idx.resize(count);
+        for (size_t i = 0; i < count; ++i) idx[i] = double(i);
     }
+    if (idx.size() % 3 != 0)
+        throw InputError(path, where,
+                         fmt::format("{} indices: expected a multiple of 3", idx.size()));
+    return idx;
+}
+
+/// Which attributes the primitives had, for the all-or-none checks.
+struct AttributeCounts {
+    int primitives = 0, withNormals = 0, withUvs = 0;
+};
+
+/// Appends one triangle primitive, transformed into the file's world space.
+void appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                     const Matrix& world, Reader& reader, const std::string& path,
+                     const std::string& where, TriangleMesh& mesh, AttributeCounts& counts) {
+    auto attribute = [&](const char* name) {
+        auto it = prim.attributes.find(name);
+        return it == prim.attributes.end() ? -1 : it->second;
+    };
+    if (attribute("POSITION") < 0) throw InputError(path, where, "expected a POSITION attribute");
+    std::vector<double> pos =
+        reader.read(attribute("POSITION"), TINYGLTF_TYPE_VEC3, where + ", POSITION");
+    const size_t count = pos.size() / 3;
+    std::vector<double> nrm, uv;
+    if (attribute("NORMAL") >= 0)
+        nrm = reader.read(attribute("NORMAL"), TINYGLTF_TYPE_VEC3, where + ", NORMAL");
+    if (attribute("TEXCOORD_0") >= 0)
+        uv = reader.read(attribute("TEXCOORD_0"), TINYGLTF_TYPE_VEC2, where + ", TEXCOORD_0");
+    if ((!nrm.empty() && nrm.size() != pos.size()) || (!uv.empty() && uv.size() / 2 != count))
+        throw InputError(path, where,
+                         "expected NORMAL and TEXCOORD_0 with as many elements as POSITION");
+    const std::vector<double> idx = primitiveIndices(model, prim, reader, count, path, where);
+    ++counts.primitives;
+    counts.withNormals += !nrm.empty();
+    counts.withUvs += !uv.empty();
+    const uint32_t first = static_cast<uint32_t>(mesh.positions.size());
+    for (size_t i = 0; i < count; ++i) {
+        mesh.positions.push_back(
+            transformPoint(world, {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]}));
+        if (!nrm.empty()) {
+            Vec3 n = transformNormal(world, {nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]});
+            mesh.normals.push_back(lengthSquared(n) > 0 ? normalize(n) : Vec3{0, 0, 1});
+        }
+        if (!uv.empty()) mesh.uvs.push_back({uv[2 * i], 1 - uv[2 * i + 1]});
+    }
+    const bool mirrored = determinant(world) < 0;
+    for (size_t t = 0; t < idx.size(); t += 3) {
+        std::array<uint32_t, 3> tri;
+        for (int c = 0; c < 3; ++c) {
+            if (!(idx[t + c] >= 0 && idx[t + c] < double(count)))
+                throw InputError(path, where,
+                                 fmt::format("index {} (triangle {}) is past the {} vertices",
+                                             idx[t + c], t / 3, count));
+            tri[c] = first + static_cast<uint32_t>(idx[t + c]);
+        }
+        if (mirrored) std::swap(tri[1], tri[2]);
+        mesh.triangles.push_back(tri);
+    }
+    if (mesh.positions.size() > (size_t(1) << 31))
+        throw InputError(path, where, "more than 2^31 vertices");
+}
+
+/// What a whole mesh must be: triangles, normals and uvs on all primitives or none, finite.
+void checkMesh(TriangleMesh& mesh, const AttributeCounts& counts, const std::string& path) {
     if (mesh.triangles.empty())
         throw InputError(path, "", "no triangles: expected a mesh primitive of mode TRIANGLES");
-    if (withNormals != 0 && withNormals != primitives)
+    if (counts.withNormals != 0 && counts.withNormals != counts.primitives)
         throw InputError(path, "",
                          "some primitives have NORMAL and some not: expected all or none");
-    if (withUvs != 0 && withUvs != primitives)
+    if (counts.withUvs != 0 && counts.withUvs != counts.primitives)
         throw InputError(path, "",
                          "some primitives have TEXCOORD_0 and some not: expected all or none");
     for (const Vec3& p : mesh.positions)
@@ -348,6 +359,29 @@ TriangleMesh loadGltfMesh(const std::string& path) {
             throw InputError(path, "", "a node transform makes a position non-finite");
     for (Vec3& n : mesh.normals)
         if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) n = Vec3{0, 0, 1};
+}
+
+}  // namespace
+
+TriangleMesh loadGltfMesh(const std::string& path) {
+    const tinygltf::Model model = readModel(path);
+    const std::vector<std::pair<int, Matrix>> instances = meshInstances(model, path);
+    TriangleMesh mesh;
+    Reader reader(path, model);
+    AttributeCounts counts;
+    for (const auto& [meshIndex, world] : instances) {
+        if (meshIndex >= int(model.meshes.size()))
+            throw InputError(path, fmt::format("mesh {}", meshIndex), "the mesh does not exist");
+        const tinygltf::Mesh& m = model.meshes[meshIndex];
+        for (size_t p = 0; p < m.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = m.primitives[p];
+            if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;
+            const std::string where =
+                fmt::format("mesh {} (\"{}\"), primitive {}", meshIndex, m.name, p);
+            appendPrimitive(model, prim, world, reader, path, where, mesh, counts);
+        }
+    }
+    checkMesh(mesh, counts, path);
     return mesh;
 }
 

@@ -289,20 +289,25 @@ void triangulate(const std::vector<uint32_t>& poly, const std::vector<Vec3>& pos
 
 }  // namespace
 
-TriangleMesh loadObjMesh(const std::string& path) {
-    const std::string text = readText(path);
-    const std::vector<FaceLine> faces = Scanner(path).scan(text);
+namespace {
 
+/// What tinyobjloader reads of the file, checked against the scan's face count.
+struct ObjContent {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
+};
+
+ObjContent parseObj(const std::string& path, const std::string& text,
+                    const std::vector<FaceLine>& faces) {
+    ObjContent obj;
     std::vector<tinyobj::material_t> materials;
     std::string warnings, errors;
     std::istringstream stream(text);
     // No material reader: `mtllib` lines are skipped, no .mtl file is looked for. No
     // triangulation: tinyobjloader's drops a quad with a bad index with only a warning, and
     // ours knows each face's line. Its other warnings are all covered by our checks.
-    bool parsed = tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &stream,
-                                   /*readMatFn=*/nullptr, /*triangulate=*/false,
+    bool parsed = tinyobj::LoadObj(&obj.attrib, &obj.shapes, &materials, &warnings, &errors,
+                                   &stream, /*readMatFn=*/nullptr, /*triangulate=*/false,
                                    /*default_vcols_fallback=*/false);
     if (!parsed) {
         std::string message = oneLine(errors.empty() ? "unknown error" : errors);
@@ -316,21 +321,87 @@ TriangleMesh loadObjMesh(const std::string& path) {
         throw InputError(path, "",
                          "no faces: expected at least one triangle or polygon (\"f\" lines)");
     size_t faceCount = 0;
-    for (const auto& shape : shapes) faceCount += shape.mesh.num_face_vertices.size();
+    for (const auto& shape : obj.shapes) faceCount += shape.mesh.num_face_vertices.size();
     if (faceCount != faces.size())
         throw InputError(path, "",
                          fmt::format("tinyobjloader read {} faces where the file has {} \"f\" "
                                      "lines: unsupported OBJ content",
                                      faceCount, faces.size()));
+    return obj;
+}
 
-    const size_t positionCount = attrib.vertices.size() / 3;
-    const size_t normalCount = attrib.normals.size() / 3;
-    const size_t uvCount = attrib.texcoords.size() / 2;
+/// The mesh's vertices: one per distinct (v, vn, vt) corner, in first-seen order.
+class VertexTable {
+public:
+    VertexTable(const std::string& path, const tinyobj::attrib_t& attrib, TriangleMesh& mesh)
+        : path_(path), attrib_(attrib), mesh_(mesh) {}
+
+    /// The vertex of corner k (1-based in messages) of the face at `where`.
+    uint32_t vertexOf(const tinyobj::index_t& c, size_t k, const std::string& where) {
+        checkIndex(c.vertex_index, attrib_.vertices.size() / 3, "vertex", "v", k, where);
+        if (c.normal_index >= 0)
+            checkIndex(c.normal_index, attrib_.normals.size() / 3, "normal", "vn", k, where);
+        if (c.texcoord_index >= 0)
+            checkIndex(c.texcoord_index, attrib_.texcoords.size() / 2, "uv", "vt", k, where);
+        auto [it, isNew] = ids_.try_emplace({c.vertex_index, c.normal_index, c.texcoord_index},
+                                            static_cast<uint32_t>(mesh_.positions.size()));
+        if (isNew) add(c, k, where);
+        return it->second;
+    }
+
+private:
+    void checkIndex(int i, size_t count, const char* what, const char* keyword, size_t k,
+                    const std::string& where) const {
+        if (i >= 0 && static_cast<size_t>(i) < count) return;
+        throw InputError(path_, where,
+                         fmt::format("corner {}: {} index {} is out of range: the "
+                                     "file has {} \"{}\" line{}",
+                                     k + 1, what, i + 1, count, keyword, count == 1 ? "" : "s"));
+    }
+
+    void add(const tinyobj::index_t& c, size_t k, const std::string& where) {
+        if (mesh_.positions.size() == std::numeric_limits<uint32_t>::max())
+            throw InputError(path_, where, "too many vertices for 32-bit indices");
+        const tinyobj::real_t* pv = &attrib_.vertices[3 * size_t(c.vertex_index)];
+        mesh_.positions.push_back({pv[0], pv[1], pv[2]});
+        // The scan bounds every number; this guards tinyobjloader's own rounding.
+        if (!isFinite(mesh_.positions.back()))
+            throw InputError(
+                path_, where,
+                fmt::format("corner {}: vertex {} is not finite", k + 1, c.vertex_index + 1));
+        if (c.normal_index >= 0) {
+            const tinyobj::real_t* nv = &attrib_.normals[3 * size_t(c.normal_index)];
+            Vec3 normal = normalize(Vec3{nv[0], nv[1], nv[2]});
+            if (normal == Vec3{} || !isFinite(normal))
+                throw InputError(path_, where,
+                                 fmt::format("corner {}: normal {} (\"vn\") has zero "
+                                             "length: expected a direction",
+                                             k + 1, c.normal_index + 1));
+            mesh_.normals.push_back(normal);
+        }
+        if (c.texcoord_index >= 0) {
+            const tinyobj::real_t* tv = &attrib_.texcoords[2 * size_t(c.texcoord_index)];
+            mesh_.uvs.push_back({tv[0], tv[1]});
+        }
+    }
+
+    const std::string& path_;
+    const tinyobj::attrib_t& attrib_;
+    TriangleMesh& mesh_;
+    std::map<std::array<int, 3>, uint32_t> ids_;
+};
+
+}  // namespace
+
+TriangleMesh loadObjMesh(const std::string& path) {
+    const std::string text = readText(path);
+    const std::vector<FaceLine> faces = Scanner(path).scan(text);
+    const ObjContent obj = parseObj(path, text, faces);
     TriangleMesh mesh;
-    std::map<std::array<int, 3>, uint32_t> vertexOf;  // (v, vn, vt) -> id, ids in first-seen order
+    VertexTable vertices(path, obj.attrib, mesh);
     std::vector<uint32_t> polygon;
     size_t face = 0;
-    for (const auto& shape : shapes) {
+    for (const auto& shape : obj.shapes) {
         size_t offset = 0;
         for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face) {
             const std::string where = fmt::format("line {}", faces[face].line);
@@ -342,50 +413,8 @@ TriangleMesh loadObjMesh(const std::string& path) {
                                  "tinyobjloader read this face differently: unsupported OBJ "
                                  "content");
             polygon.clear();
-            for (size_t k = 0; k < corners; ++k) {
-                const tinyobj::index_t& c = shape.mesh.indices[offset + k];
-                auto check = [&](int i, size_t count, const char* what, const char* keyword) {
-                    if (i >= 0 && static_cast<size_t>(i) < count) return;
-                    throw InputError(
-                        path, where,
-                        fmt::format("corner {}: {} index {} is out of range: the "
-                                    "file has {} \"{}\" line{}",
-                                    k + 1, what, i + 1, count, keyword, count == 1 ? "" : "s"));
-                };
-                check(c.vertex_index, positionCount, "vertex", "v");
-                if (c.normal_index >= 0) check(c.normal_index, normalCount, "normal", "vn");
-                if (c.texcoord_index >= 0) check(c.texcoord_index, uvCount, "uv", "vt");
-
-                auto [it, isNew] =
-                    vertexOf.try_emplace({c.vertex_index, c.normal_index, c.texcoord_index},
-                                         static_cast<uint32_t>(mesh.positions.size()));
-                if (isNew) {
-                    if (mesh.positions.size() == std::numeric_limits<uint32_t>::max())
-                        throw InputError(path, where, "too many vertices for 32-bit indices");
-                    const tinyobj::real_t* pv = &attrib.vertices[3 * size_t(c.vertex_index)];
-                    mesh.positions.push_back({pv[0], pv[1], pv[2]});
-                    // The scan bounds every number; this guards tinyobjloader's own rounding.
-                    if (!isFinite(mesh.positions.back()))
-                        throw InputError(path, where,
-                                         fmt::format("corner {}: vertex {} is not finite", k + 1,
-                                                     c.vertex_index + 1));
-                    if (c.normal_index >= 0) {
-                        const tinyobj::real_t* nv = &attrib.normals[3 * size_t(c.normal_index)];
-                        Vec3 normal = normalize(Vec3{nv[0], nv[1], nv[2]});
-                        if (normal == Vec3{} || !isFinite(normal))
-                            throw InputError(path, where,
-                                             fmt::format("corner {}: normal {} (\"vn\") has zero "
-                                                         "length: expected a direction",
-                                                         k + 1, c.normal_index + 1));
-                        mesh.normals.push_back(normal);
-                    }
-                    if (c.texcoord_index >= 0) {
-                        const tinyobj::real_t* tv = &attrib.texcoords[2 * size_t(c.texcoord_index)];
-                        mesh.uvs.push_back({tv[0], tv[1]});
-                    }
-                }
-                polygon.push_back(it->second);
-            }
+            for (size_t k = 0; k < corners; ++k)
+                polygon.push_back(vertices.vertexOf(shape.mesh.indices[offset + k], k, where));
             offset += corners;
             triangulate(polygon, mesh.positions, mesh.triangles);
         }

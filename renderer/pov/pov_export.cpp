@@ -139,13 +139,8 @@ std::string materialTexture(const Material& m) {
     }
 }
 
-}  // namespace
-
-std::vector<std::string> exportPovScene(const Scene& scene, const std::string& folder,
-                                        const PovExportOptions& options) {
-    if (!fs::is_directory(folder))
-        throw InputError(folder, "-o", "expected an existing folder for the POV-Ray scene");
-    std::vector<std::string> written;
+/// The scene's header, camera and lights in POV-Ray's language.
+std::string povCameraAndLights(const Scene& scene) {
     const RenderSettings& s = scene.settings;
     const CameraSpec& c = scene.camera;
     double aspect = double(s.width) / s.height;
@@ -189,74 +184,91 @@ std::vector<std::string> exportPovScene(const Scene& scene, const std::string& f
                 break;
         }
     }
-    pov += "\n";
+    return pov + "\n";
+}
 
-    std::vector<std::unique_ptr<AtomicOutput>> outputs;
+/// A triangle mesh as a POV-Ray mesh2 (without its closing brace).
+std::string povMesh2(const TriangleMesh& mesh) {
+    std::string body = fmt::format("mesh2 {{\n  vertex_vectors {{ {}", mesh.positions.size());
+    for (const Vec3& p : mesh.positions) body += ",\n    " + vec(p);
+    body += " }\n";
+    if (!mesh.normals.empty()) {
+        body += fmt::format("  normal_vectors {{ {}", mesh.normals.size());
+        for (const Vec3& n : mesh.normals) body += ",\n    " + vec(n);
+        body += " }\n";
+    }
+    if (!mesh.uvs.empty()) {
+        body += fmt::format("  uv_vectors {{ {}", mesh.uvs.size());
+        for (const auto& uv : mesh.uvs)
+            body += fmt::format(",\n    <{:.9g}, {:.9g}>", uv[0], uv[1]);
+        body += " }\n";
+    }
+    body += fmt::format("  face_indices {{ {}", mesh.triangles.size());
+    for (const auto& t : mesh.triangles)
+        body += fmt::format(",\n    <{}, {}, {}>", t[0], t[1], t[2]);
+    return body + " }\n";
+}
+
+/// One object (wood baked into df3 volumes beside the scene, added to `written`).
+std::string povObject(const SceneObject& o, const Material& m, const std::string& name,
+                      const std::string& folder, const PovExportOptions& options,
+                      std::vector<std::string>& written) {
+    std::string pov;
+    std::string texture = materialTexture(m);
+    if (m.type == MaterialType::Wood) {
+        BakedGrid grid = bakeObjectVolume(o, *m.wood, options.volumeResolution, options.threads);
+        std::string base = (fs::path(folder) / (name + ".df3")).string();
+        for (const std::string& f : writeDf3(grid, base)) written.push_back(f);
+        pov += fmt::format("#include \"{}.inc\"  // declares nenrin_wood in object space\n", name);
+        texture = "texture { pigment { nenrin_wood } finish { ambient 0 diffuse 1 } }";
+    } else if (m.type == MaterialType::Textured) {
+        pov += "// A textured material is exported as its mean grey.\n";
+    }
+    pov += fmt::format("// {} ({})\n", o.name, o.type);
+    if (o.shape == ShapeType::Box)
+        return pov + fmt::format("box {{ {}, {}\n  {}\n  {} }}\n\n", vec(o.size * -0.5),
+                                 vec(o.size * 0.5), texture, matrix(o.worldFromObject));
+    return pov + povMesh2(*o.mesh) +
+           fmt::format("  {}\n  {} }}\n\n", texture, matrix(o.worldFromObject));
+}
+
+/// Writes `text` to `path` through an atomic output kept in `outputs` (committed together).
+void writeText(const std::string& path, const std::string& text, const char* what,
+               std::vector<std::unique_ptr<AtomicOutput>>& outputs) {
+    outputs.push_back(std::make_unique<AtomicOutput>(path));
+    std::ofstream f(outputs.back()->temporaryPath());
+    f << text;
+    if (!f) throw InputError(path, "output", fmt::format("cannot write the POV-Ray {}", what));
+}
+
+}  // namespace
+
+std::vector<std::string> exportPovScene(const Scene& scene, const std::string& folder,
+                                        const PovExportOptions& options) {
+    if (!fs::is_directory(folder))
+        throw InputError(folder, "-o", "expected an existing folder for the POV-Ray scene");
+    std::vector<std::string> written;
+    std::string pov = povCameraAndLights(scene);
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& o = scene.objects[i];
-        const Material& m = scene.materials[o.material];
-        std::string name = safeName(o.name, i);
-        std::string texture = materialTexture(m);
-        if (m.type == MaterialType::Wood) {
-            BakedGrid grid =
-                bakeObjectVolume(o, *m.wood, options.volumeResolution, options.threads);
-            std::string base = (fs::path(folder) / (name + ".df3")).string();
-            for (const std::string& f : writeDf3(grid, base)) written.push_back(f);
-            pov +=
-                fmt::format("#include \"{}.inc\"  // declares nenrin_wood in object space\n", name);
-            texture = "texture { pigment { nenrin_wood } finish { ambient 0 diffuse 1 } }";
-        } else if (m.type == MaterialType::Textured) {
-            pov += "// A textured material is exported as its mean grey.\n";
-        }
-        pov += fmt::format("// {} ({})\n", o.name, o.type);
-        if (o.shape == ShapeType::Box) {
-            pov += fmt::format("box {{ {}, {}\n  {}\n  {} }}\n\n", vec(o.size * -0.5),
-                               vec(o.size * 0.5), texture, matrix(o.worldFromObject));
-        } else {
-            const TriangleMesh& mesh = *o.mesh;
-            std::string body =
-                fmt::format("mesh2 {{\n  vertex_vectors {{ {}", mesh.positions.size());
-            for (const Vec3& p : mesh.positions) body += ",\n    " + vec(p);
-            body += " }\n";
-            if (!mesh.normals.empty()) {
-                body += fmt::format("  normal_vectors {{ {}", mesh.normals.size());
-                for (const Vec3& n : mesh.normals) body += ",\n    " + vec(n);
-                body += " }\n";
-            }
-            if (!mesh.uvs.empty()) {
-                body += fmt::format("  uv_vectors {{ {}", mesh.uvs.size());
-                for (const auto& uv : mesh.uvs)
-                    body += fmt::format(",\n    <{:.9g}, {:.9g}>", uv[0], uv[1]);
-                body += " }\n";
-            }
-            body += fmt::format("  face_indices {{ {}", mesh.triangles.size());
-            for (const auto& t : mesh.triangles)
-                body += fmt::format(",\n    <{}, {}, {}>", t[0], t[1], t[2]);
-            body += " }\n";
-            pov += body + fmt::format("  {}\n  {} }}\n\n", texture, matrix(o.worldFromObject));
-        }
+        pov += povObject(o, scene.materials[o.material], safeName(o.name, i), folder, options,
+                         written);
     }
 
+    const RenderSettings& s = scene.settings;
     std::string povPath = (fs::path(folder) / "scene.pov").string();
     std::string iniPath = (fs::path(folder) / "scene.ini").string();
-    outputs.push_back(std::make_unique<AtomicOutput>(povPath));
-    {
-        std::ofstream f(outputs.back()->temporaryPath());
-        f << pov;
-        if (!f) throw InputError(povPath, "output", "cannot write the POV-Ray scene");
-    }
-    outputs.push_back(std::make_unique<AtomicOutput>(iniPath));
-    {
-        std::ofstream f(outputs.back()->temporaryPath());
-        // The deterministic reference settings of docs/design/povray.md.
-        f << fmt::format(
-            "; nenrin's reference settings for scene.pov (docs/povray-bridge.md)\n"
-            "Input_File_Name=scene.pov\nWidth={}\nHeight={}\nOutput_File_Type=E\n"
-            "Antialias=on\nAntialias_Threshold=0.0\nSampling_Method=2\nAntialias_Depth=4\n"
-            "Jitter=off\nDisplay=off\n",
-            s.width, s.height);
-        if (!f) throw InputError(iniPath, "output", "cannot write the POV-Ray ini file");
-    }
+    std::vector<std::unique_ptr<AtomicOutput>> outputs;
+    writeText(povPath, pov, "scene", outputs);
+    // The deterministic reference settings of docs/design/povray.md.
+    writeText(
+        iniPath,
+        fmt::format("; nenrin's reference settings for scene.pov (docs/povray-bridge.md)\n"
+                    "Input_File_Name=scene.pov\nWidth={}\nHeight={}\nOutput_File_Type=E\n"
+                    "Antialias=on\nAntialias_Threshold=0.0\nSampling_Method=2\nAntialias_Depth=4\n"
+                    "Jitter=off\nDisplay=off\n",
+                    s.width, s.height),
+        "ini file", outputs);
     for (auto& o : outputs) o->commit();
     written.push_back(povPath);
     written.push_back(iniPath);

@@ -115,47 +115,56 @@ Rgb sky(const Vec3& d) {
             kSkyHorizon.b + (kSkyZenith.b - kSkyHorizon.b) * t};
 }
 
-}  // namespace
+/// The view of the whole tree: its nodes' bounding box seen from (azimuth, elevation).
+struct TreeView {
+    Vec3 lo, hi, centre;
+    Vec3 eye, forward, right, up;
+    double aspect, tanHalf, distance;
+    double ground;  ///< radius of the ground disc
+};
 
-TreePreview renderTreePreview(const Skeleton& sk, const TreePreviewOptions& o) {
-    if (sk.empty()) throw std::invalid_argument("renderTreePreview: empty skeleton");
-    TreePreview out;
-    out.width = o.width, out.height = o.height;
-    out.segments = sk.segments().size();
-
-    // Frame: the nodes' bounding box seen from (azimuth, elevation).
-    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    double lastBirth = 0;
-    bool anyRadius = false;
+TreeView frameTree(const Skeleton& sk, const TreePreviewOptions& o) {
+    TreeView v;
+    v.lo = {1e300, 1e300, 1e300};
+    v.hi = {-1e300, -1e300, -1e300};
     for (const auto& n : sk.nodes()) {
-        lo = {std::min(lo.x, n.position.x), std::min(lo.y, n.position.y),
-              std::min(lo.z, n.position.z)};
-        hi = {std::max(hi.x, n.position.x), std::max(hi.y, n.position.y),
-              std::max(hi.z, n.position.z)};
-        lastBirth = std::max(lastBirth, n.birthTime);
-        anyRadius = anyRadius || n.radius > 0;
+        v.lo = {std::min(v.lo.x, n.position.x), std::min(v.lo.y, n.position.y),
+                std::min(v.lo.z, n.position.z)};
+        v.hi = {std::max(v.hi.x, n.position.x), std::max(v.hi.y, n.position.y),
+                std::max(v.hi.z, n.position.z)};
     }
-    Vec3 centre = (lo + hi) * 0.5;
-    double aspect = double(o.width) / o.height;
+    const Vec3 &lo = v.lo, &hi = v.hi;
+    v.centre = (lo + hi) * 0.5;
+    v.aspect = double(o.width) / o.height;
     // Fit the tree's height and width (trees are tall: a bounding sphere would leave most of
     // a portrait frame empty), standing back by the crown's half width.
     double halfHeight = std::max(0.5 * (hi.z - lo.z), 0.05);
     double halfWidth = std::max(0.5 * std::max(hi.x - lo.x, hi.y - lo.y), 0.05);
-    double tanY = std::tan(0.5 * kFovY), tanX = tanY * aspect;
-    double distance = 1.12 * std::max(halfHeight / tanY, halfWidth / tanX) + halfWidth;
-    const double ground = std::max(1.6 * halfWidth, 0.6 * halfHeight);  // radius of the disc
+    double tanY = std::tan(0.5 * kFovY), tanX = tanY * v.aspect;
+    v.distance = 1.12 * std::max(halfHeight / tanY, halfWidth / tanX) + halfWidth;
+    v.ground = std::max(1.6 * halfWidth, 0.6 * halfHeight);
     Vec3 toCamera{std::cos(o.elevation * kDegree) * std::cos(o.azimuth * kDegree),
                   std::cos(o.elevation * kDegree) * std::sin(o.azimuth * kDegree),
                   std::sin(o.elevation * kDegree)};
-    Vec3 eye = centre + toCamera * distance;
-    Vec3 forward = normalize(centre - eye);
-    Vec3 right = normalize(cross(forward, Vec3{0, 0, 1}));
-    Vec3 up = cross(right, forward);
-    double tanHalf = std::tan(0.5 * kFovY);
-    double pixelAngle = 2 * tanHalf / o.height;
+    v.eye = v.centre + toCamera * v.distance;
+    v.forward = normalize(v.centre - v.eye);
+    v.right = normalize(cross(v.forward, Vec3{0, 0, 1}));
+    v.up = cross(v.right, v.forward);
+    v.tanHalf = std::tan(0.5 * kFovY);
+    return v;
+}
 
-    // Radii: the skeleton's, or from the node's age; never thinner than half a pixel.
-    out.estimatedRadii = !anyRadius;
+/// Radii: the skeleton's, or from the node's age; never thinner than half a pixel.
+std::vector<float> previewRadii(const Skeleton& sk, const TreePreviewOptions& o,
+                                const TreeView& view, bool& estimated) {
+    double lastBirth = 0;
+    bool anyRadius = false;
+    for (const auto& n : sk.nodes()) {
+        lastBirth = std::max(lastBirth, n.birthTime);
+        anyRadius = anyRadius || n.radius > 0;
+    }
+    estimated = !anyRadius;
+    const double pixelAngle = 2 * view.tanHalf / o.height;
     double age = lastBirth + 1;
     std::vector<float> radii(sk.nodes().size());
     std::vector<double> gammaOfNode(sk.nodes().size(), 1.0);
@@ -164,10 +173,47 @@ TreePreview renderTreePreview(const Skeleton& sk, const TreePreviewOptions& o) {
         const SkeletonNode& n = sk.node(i);
         double r = anyRadius ? n.radius
                              : o.radiusPerYear * gammaOfNode[i] * std::max(0.0, age - n.birthTime);
-        double minimum = 0.5 * pixelAngle * length(n.position - eye);
+        double minimum = 0.5 * pixelAngle * length(n.position - view.eye);
         radii[i] = float(std::max(r, minimum));
     }
-    CurveScene scene(sk, radii, {centre.x, centre.y, lo.z}, ground);
+    return radii;
+}
+
+/// The radiance along one camera ray: sky, the ground disc or the tree, under sun and sky.
+Rgb previewRadiance(const Skeleton& sk, const CurveScene& scene, const TreeView& view,
+                    const Vec3& sun, const Vec3& d) {
+    RTCRayHit rh;
+    if (!scene.intersect(view.eye, d, rh)) return sky(d);
+    Vec3 p = view.eye + d * double(rh.ray.tfar);
+    Vec3 n = normalize(Vec3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
+    if (dot(n, d) > 0) n = n * -1.0;
+    Rgb albedo = kGround;
+    if (rh.hit.geomID == kGroundId) {
+        // Fade the ground square into the sky: a disc around the tree.
+        double r = length(Vec3{p.x - view.centre.x, p.y - view.centre.y, 0}) / view.ground;
+        if (r > 1) return sky(d);
+    } else {
+        const SkeletonSegment& seg = sk.segment(rh.hit.primID);
+        albedo = std::isfinite(seg.deathTime) ? kDeadWood : kBark;
+    }
+    double lit = std::max(0.0, dot(n, sun));
+    if (lit > 0 && scene.occluded(p + n * (1e-4 * view.distance), sun)) lit = 0;
+    double skyLight = 0.35 * (0.6 + 0.4 * n.z);
+    return {albedo.r * (kSun.r * lit + kSkyHorizon.r * skyLight),
+            albedo.g * (kSun.g * lit + kSkyHorizon.g * skyLight),
+            albedo.b * (kSun.b * lit + kSkyHorizon.b * skyLight)};
+}
+
+}  // namespace
+
+TreePreview renderTreePreview(const Skeleton& sk, const TreePreviewOptions& o) {
+    if (sk.empty()) throw std::invalid_argument("renderTreePreview: empty skeleton");
+    TreePreview out;
+    out.width = o.width, out.height = o.height;
+    out.segments = sk.segments().size();
+    const TreeView view = frameTree(sk, o);
+    const std::vector<float> radii = previewRadii(sk, o, view, out.estimatedRadii);
+    CurveScene scene(sk, radii, {view.centre.x, view.centre.y, view.lo.z}, view.ground);
     Vec3 sun = normalize(
         Vec3{std::cos((o.azimuth + 70) * kDegree), std::sin((o.azimuth + 70) * kDegree), 1.1});
 
@@ -182,37 +228,10 @@ TreePreview renderTreePreview(const Skeleton& sk, const TreePreviewOptions& o) {
             for (int s = 0; s < spp; ++s) {
                 double jx = ((s % strata) + uniform01(7, pixel, 2 * s)) / strata;
                 double jy = ((s / strata % strata) + uniform01(7, pixel, 2 * s + 1)) / strata;
-                double u = (2 * (x + jx) / o.width - 1) * tanHalf * aspect;
-                double v = (1 - 2 * (y + jy) / o.height) * tanHalf;
-                Vec3 d = normalize(forward + right * u + up * v);
-                RTCRayHit rh;
-                Rgb c;
-                if (!scene.intersect(eye, d, rh)) {
-                    c = sky(d);
-                } else {
-                    Vec3 p = eye + d * double(rh.ray.tfar);
-                    Vec3 n = normalize(Vec3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
-                    if (dot(n, d) > 0) n = n * -1.0;
-                    Rgb albedo = kGround;
-                    if (rh.hit.geomID == kGroundId) {
-                        // Fade the ground square into the sky: a disc around the tree.
-                        double r = length(Vec3{p.x - centre.x, p.y - centre.y, 0}) / ground;
-                        if (r > 1) {
-                            c = sky(d);
-                            sum = {sum.r + c.r, sum.g + c.g, sum.b + c.b};
-                            continue;
-                        }
-                    } else {
-                        const SkeletonSegment& seg = sk.segment(rh.hit.primID);
-                        albedo = std::isfinite(seg.deathTime) ? kDeadWood : kBark;
-                    }
-                    double lit = std::max(0.0, dot(n, sun));
-                    if (lit > 0 && scene.occluded(p + n * (1e-4 * distance), sun)) lit = 0;
-                    double skyLight = 0.35 * (0.6 + 0.4 * n.z);
-                    c = {albedo.r * (kSun.r * lit + kSkyHorizon.r * skyLight),
-                         albedo.g * (kSun.g * lit + kSkyHorizon.g * skyLight),
-                         albedo.b * (kSun.b * lit + kSkyHorizon.b * skyLight)};
-                }
+                double u = (2 * (x + jx) / o.width - 1) * view.tanHalf * view.aspect;
+                double v = (1 - 2 * (y + jy) / o.height) * view.tanHalf;
+                Vec3 d = normalize(view.forward + view.right * u + view.up * v);
+                Rgb c = previewRadiance(sk, scene, view, sun, d);
                 sum = {sum.r + c.r, sum.g + c.g, sum.b + c.b};
             }
             float* px = &out.rgb[(size_t(y) * o.width + x) * 3];

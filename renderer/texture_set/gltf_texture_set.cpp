@@ -140,64 +140,69 @@ std::vector<float> vertexTangents(const TriangleMesh& mesh, const std::vector<Ve
     return out;
 }
 
-/// The model without images' data: the mesh in buffer 0, the material, textures pointing at
-/// images 0..3 (base colour, metallic-roughness, normal and, with a fibre highlight,
-/// anisotropy).
-tinygltf::Model buildModel(const UvMaps& maps, const SceneObject& object,
-                           const std::map<std::string, std::string>& metadata) {
-    const TriangleMesh& mesh = *object.mesh;
+/// A mesh's vertex data as glTF wants it: float positions (with their float bounds), unit
+/// normals, uvs with v running down, tangents, and the triangle indices.
+struct GltfVertices {
+    size_t count = 0;
+    std::vector<float> positions, normals, uvs, tangents;
+    std::vector<double> lo, hi;
+    std::vector<uint32_t> indices;
+};
+
+GltfVertices gltfVertices(const TriangleMesh& mesh) {
     const std::vector<Vec3> normals =
         mesh.normals.empty() ? computeVertexNormals(mesh) : mesh.normals;
-    const size_t count = mesh.positions.size();
-    std::vector<float> positions(3 * count), normalData(3 * count), uvs(2 * count);
-    std::vector<double> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (size_t i = 0; i < count; ++i) {
+    GltfVertices v;
+    v.count = mesh.positions.size();
+    v.positions.resize(3 * v.count);
+    v.normals.resize(3 * v.count);
+    v.uvs.resize(2 * v.count);
+    v.lo = {1e300, 1e300, 1e300};
+    v.hi = {-1e300, -1e300, -1e300};
+    for (size_t i = 0; i < v.count; ++i) {
         const double p[3] = {mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z};
         const double q[3] = {normals[i].x, normals[i].y, normals[i].z};
         for (int c = 0; c < 3; ++c) {
-            positions[3 * i + c] = float(p[c]);
+            v.positions[3 * i + c] = float(p[c]);
             // Stored as float, the bounds are the float values (the validator checks them).
-            lo[c] = std::min(lo[c], double(positions[3 * i + c]));
-            hi[c] = std::max(hi[c], double(positions[3 * i + c]));
+            v.lo[c] = std::min(v.lo[c], double(v.positions[3 * i + c]));
+            v.hi[c] = std::max(v.hi[c], double(v.positions[3 * i + c]));
         }
         Vec3 nrm = normalize(Vec3{float(q[0]), float(q[1]), float(q[2])});
-        normalData[3 * i] = float(nrm.x);
-        normalData[3 * i + 1] = float(nrm.y);
-        normalData[3 * i + 2] = float(nrm.z);
+        v.normals[3 * i] = float(nrm.x);
+        v.normals[3 * i + 1] = float(nrm.y);
+        v.normals[3 * i + 2] = float(nrm.z);
         // glTF's v runs down the image, OBJ's up.
-        uvs[2 * i] = float(mesh.uvs[i][0]);
-        uvs[2 * i + 1] = float(1 - mesh.uvs[i][1]);
+        v.uvs[2 * i] = float(mesh.uvs[i][0]);
+        v.uvs[2 * i + 1] = float(1 - mesh.uvs[i][1]);
     }
-    const std::vector<float> tangents = vertexTangents(mesh, normals);
-    std::vector<uint32_t> indices;
-    indices.reserve(3 * mesh.triangles.size());
-    for (const auto& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
+    v.tangents = vertexTangents(mesh, normals);
+    v.indices.reserve(3 * mesh.triangles.size());
+    for (const auto& t : mesh.triangles) v.indices.insert(v.indices.end(), t.begin(), t.end());
+    return v;
+}
 
-    tinygltf::Model model;
-    model.asset.version = "2.0";
-    model.asset.generator = "nenrin " + (metadata.count("version") ? metadata.at("version") : "");
+/// The mesh in buffer 0, as mesh 0 of node 0 of the default scene, with material 0.
+void addMesh(tinygltf::Model& model, const SceneObject& object) {
+    const GltfVertices v = gltfVertices(*object.mesh);
+    const size_t count = v.count;
     model.buffers.resize(1);
     std::vector<unsigned char>& data = model.buffers[0].data;
-    size_t at = data.size();
-    append(data, positions.data(), positions.size() * 4);
-    const int posView = addView(model, at, positions.size() * 4, kArrayBuffer);
-    at = data.size();
-    append(data, normalData.data(), normalData.size() * 4);
-    const int nrmView = addView(model, at, normalData.size() * 4, kArrayBuffer);
-    at = data.size();
-    append(data, uvs.data(), uvs.size() * 4);
-    const int uvView = addView(model, at, uvs.size() * 4, kArrayBuffer);
-    at = data.size();
-    append(data, tangents.data(), tangents.size() * 4);
-    const int tanView = addView(model, at, tangents.size() * 4, kArrayBuffer);
-    at = data.size();
-    append(data, indices.data(), indices.size() * 4);
-    const int idxView = addView(model, at, indices.size() * 4, kElementArrayBuffer);
+    auto addBufferView = [&](const auto& values, int target) {
+        const size_t at = data.size();
+        append(data, values.data(), values.size() * 4);
+        return addView(model, at, values.size() * 4, target);
+    };
+    const int posView = addBufferView(v.positions, kArrayBuffer);
+    const int nrmView = addBufferView(v.normals, kArrayBuffer);
+    const int uvView = addBufferView(v.uvs, kArrayBuffer);
+    const int tanView = addBufferView(v.tangents, kArrayBuffer);
+    const int idxView = addBufferView(v.indices, kElementArrayBuffer);
 
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
     prim.attributes["POSITION"] = addAccessor(model, posView, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                              TINYGLTF_TYPE_VEC3, count, lo, hi);
+                                              TINYGLTF_TYPE_VEC3, count, v.lo, v.hi);
     prim.attributes["NORMAL"] =
         addAccessor(model, nrmView, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
     prim.attributes["TEXCOORD_0"] =
@@ -205,7 +210,7 @@ tinygltf::Model buildModel(const UvMaps& maps, const SceneObject& object,
     prim.attributes["TANGENT"] =
         addAccessor(model, tanView, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, count);
     prim.indices = addAccessor(model, idxView, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                               TINYGLTF_TYPE_SCALAR, indices.size());
+                               TINYGLTF_TYPE_SCALAR, v.indices.size());
     prim.material = 0;
     tinygltf::Mesh m;
     m.name = object.name;
@@ -219,7 +224,11 @@ tinygltf::Model buildModel(const UvMaps& maps, const SceneObject& object,
     scene.nodes = {0};
     model.scenes.push_back(scene);
     model.defaultScene = 0;
+}
 
+/// The sampler, the textures of images 0..3 and the material over them: the finish's coat
+/// as KHR_materials_clearcoat, its fibre highlight as KHR_materials_anisotropy.
+void addMaterial(tinygltf::Model& model, const UvMaps& maps, const SceneObject& object) {
     tinygltf::Sampler sampler;
     sampler.magFilter = kLinear;
     sampler.minFilter = kLinearMipmapLinear;
@@ -255,6 +264,18 @@ tinygltf::Model buildModel(const UvMaps& maps, const SceneObject& object,
         model.extensionsUsed.push_back("KHR_materials_anisotropy");
     }
     model.materials.push_back(material);
+}
+
+/// The model without images' data: the mesh in buffer 0, the material, textures pointing at
+/// images 0..3 (base colour, metallic-roughness, normal and, with a fibre highlight,
+/// anisotropy).
+tinygltf::Model buildModel(const UvMaps& maps, const SceneObject& object,
+                           const std::map<std::string, std::string>& metadata) {
+    tinygltf::Model model;
+    model.asset.version = "2.0";
+    model.asset.generator = "nenrin " + (metadata.count("version") ? metadata.at("version") : "");
+    addMesh(model, object);
+    addMaterial(model, maps, object);
     return model;
 }
 

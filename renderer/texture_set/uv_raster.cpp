@@ -81,15 +81,8 @@ double closestOnBoundary(const Point (&c)[3], Point p, std::array<double, 3>& we
 
 enum TexelState : uint8_t { kEmpty, kEdge, kInterior, kOverlapped };
 
-}  // namespace
-
-std::vector<uint8_t> UvRaster::covered() const {
-    std::vector<uint8_t> c(triangle.size());
-    for (size_t i = 0; i < triangle.size(); ++i) c[i] = triangle[i] >= 0 ? 1 : 0;
-    return c;
-}
-
-UvRaster rasterizeUv(const TriangleMesh& mesh, int width, int height) {
+/// The input's problems are programming errors: callers check uvs and sizes first.
+void checkRasterInput(const TriangleMesh& mesh, int width, int height) {
     if (mesh.uvs.empty()) throw std::invalid_argument("rasterizeUv: the mesh has no uvs");
     if (width < 1 || height < 1) {
         throw std::invalid_argument("rasterizeUv: map size " + std::to_string(width) + "x" +
@@ -104,6 +97,71 @@ UvRaster rasterizeUv(const TriangleMesh& mesh, int width, int height) {
             }
         }
     }
+}
+
+/// The texels of triangle `id` (corners c in texel space, edge functions e, twice its area):
+/// those whose centre it holds (interior; the lowest index keeps a texel two hold), and those
+/// its edges only cross, given to the triangle whose boundary is nearest the centre.
+void coverTexels(const Point (&c)[3], const Edge (&e)[3], double area, int32_t id, UvRaster& r,
+                 std::vector<uint8_t>& state, std::vector<double>& edgeDistance) {
+    const int width = r.width;
+    // Half the texel square's extent along each edge function (its gradient's L1 norm / 2).
+    double halfExtent[3];
+    for (int k = 0; k < 3; ++k) halfExtent[k] = 0.5 * (std::abs(e[k].gx()) + std::abs(e[k].gy()));
+    int i0, i1, j0, j1;
+    texelRange(std::min({c[0].x, c[1].x, c[2].x}), std::max({c[0].x, c[1].x, c[2].x}), r.width, i0,
+               i1);
+    texelRange(std::min({c[0].y, c[1].y, c[2].y}), std::max({c[0].y, c[1].y, c[2].y}), r.height, j0,
+               j1);
+    for (int j = j0; j <= j1; ++j) {
+        for (int i = i0; i <= i1; ++i) {
+            const Point p{i + 0.5, j + 0.5};
+            const size_t idx = static_cast<size_t>(j) * width + i;
+            double w[3] = {e[0](p), e[1](p), e[2](p)};
+            if (insideEdge(e[0], w[0]) && insideEdge(e[1], w[1]) && insideEdge(e[2], w[2])) {
+                if (state[idx] >= kInterior) {
+                    // Lowest index wins: the earlier triangle keeps the texel.
+                    if (state[idx] == kInterior) ++r.overlappingTexels;
+                    state[idx] = kOverlapped;
+                    continue;
+                }
+                state[idx] = kInterior;
+                r.triangle[idx] = id;
+                // Normalised by the sum (not the area) so the weights sum to 1.
+                double sum = w[0] + w[1] + w[2];
+                r.barycentric[idx] = {w[0] / sum, w[1] / sum, w[2] / sum};
+                continue;
+            }
+            if (state[idx] >= kInterior) continue;
+            // Separating axes: the bounding box is shared by construction of the range;
+            // the square must reach strictly into the triangle along each edge normal.
+            bool touches = true;
+            for (int k = 0; k < 3 && touches; ++k) {
+                touches = w[k] + halfExtent[k] > 0 && w[k] - halfExtent[k] < area;
+            }
+            if (!touches) continue;
+            std::array<double, 3> weights{};
+            double d2 = closestOnBoundary(c, p, weights);
+            if (d2 < edgeDistance[idx]) {  // strict: ties stay with the lower index
+                edgeDistance[idx] = d2;
+                state[idx] = kEdge;
+                r.triangle[idx] = id;
+                r.barycentric[idx] = weights;
+            }
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<uint8_t> UvRaster::covered() const {
+    std::vector<uint8_t> c(triangle.size());
+    for (size_t i = 0; i < triangle.size(); ++i) c[i] = triangle[i] >= 0 ? 1 : 0;
+    return c;
+}
+
+UvRaster rasterizeUv(const TriangleMesh& mesh, int width, int height) {
+    checkRasterInput(mesh, width, height);
 
     UvRaster r;
     r.width = width;
@@ -141,54 +199,7 @@ UvRaster rasterizeUv(const TriangleMesh& mesh, int width, int height) {
         const Edge e[3] = {makeEdge(c[1], c[2], orient), makeEdge(c[2], c[0], orient),
                            makeEdge(c[0], c[1], orient)};
         const double area = std::abs(rawArea);
-        // Half the texel square's extent along each edge function (its gradient's L1 norm / 2).
-        double halfExtent[3];
-        for (int k = 0; k < 3; ++k)
-            halfExtent[k] = 0.5 * (std::abs(e[k].gx()) + std::abs(e[k].gy()));
-
-        int i0, i1, j0, j1;
-        texelRange(std::min({c[0].x, c[1].x, c[2].x}), std::max({c[0].x, c[1].x, c[2].x}), width,
-                   i0, i1);
-        texelRange(std::min({c[0].y, c[1].y, c[2].y}), std::max({c[0].y, c[1].y, c[2].y}), height,
-                   j0, j1);
-        const int32_t id = static_cast<int32_t>(t);
-        for (int j = j0; j <= j1; ++j) {
-            for (int i = i0; i <= i1; ++i) {
-                const Point p{i + 0.5, j + 0.5};
-                const size_t idx = static_cast<size_t>(j) * width + i;
-                double w[3] = {e[0](p), e[1](p), e[2](p)};
-                if (insideEdge(e[0], w[0]) && insideEdge(e[1], w[1]) && insideEdge(e[2], w[2])) {
-                    if (state[idx] >= kInterior) {
-                        // Lowest index wins: the earlier triangle keeps the texel.
-                        if (state[idx] == kInterior) ++r.overlappingTexels;
-                        state[idx] = kOverlapped;
-                        continue;
-                    }
-                    state[idx] = kInterior;
-                    r.triangle[idx] = id;
-                    // Normalised by the sum (not the area) so the weights sum to 1.
-                    double sum = w[0] + w[1] + w[2];
-                    r.barycentric[idx] = {w[0] / sum, w[1] / sum, w[2] / sum};
-                    continue;
-                }
-                if (state[idx] >= kInterior) continue;
-                // Separating axes: the bounding box is shared by construction of the range;
-                // the square must reach strictly into the triangle along each edge normal.
-                bool touches = true;
-                for (int k = 0; k < 3 && touches; ++k) {
-                    touches = w[k] + halfExtent[k] > 0 && w[k] - halfExtent[k] < area;
-                }
-                if (!touches) continue;
-                std::array<double, 3> weights{};
-                double d2 = closestOnBoundary(c, p, weights);
-                if (d2 < edgeDistance[idx]) {  // strict: ties stay with the lower index
-                    edgeDistance[idx] = d2;
-                    state[idx] = kEdge;
-                    r.triangle[idx] = id;
-                    r.barycentric[idx] = weights;
-                }
-            }
-        }
+        coverTexels(c, e, area, static_cast<int32_t>(t), r, state, edgeDistance);
     }
     r.edgeTexels = static_cast<size_t>(std::count(state.begin(), state.end(), kEdge));
     return r;
