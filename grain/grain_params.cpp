@@ -19,17 +19,9 @@ Rgb readRgb(JsonReader& r, const std::string& key, const Rgb& fallback, double l
 
 nlohmann::json rgbJson(const Rgb& c) { return {c.r, c.g, c.b}; }
 
-}  // namespace
-
-GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
-    GrainParams g;
-    JsonReader root(json, file);
-    root.string("description", "");
-    root.choice("format", "nenrin-grain", {"nenrin-grain"});
-    root.object("reference");  // what a preset was made from (colour measurements, sources):
-                               // read by people and tests, not by nenrin
-    g.radialSpeed = root.positive("radial_speed", g.radialSpeed);
-    g.fellingTime = root.nonNegative("felling_time", g.fellingTime);
+/// The growth terms' parameters: the junction blend (eq. 5), direction (eq. 7), age (eq. 8),
+/// taper (eq. 9) and sway (section 4.5).
+void readGrowthTerms(JsonReader& root, GrainParams& g) {
     if (auto j = root.object("junction")) {
         g.junction.p = j->inRange("p", g.junction.p, 0.5, 64);
         g.junction.reach = j->inRange("reach", g.junction.reach, 1.5, 100);
@@ -58,116 +50,141 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
         g.sway.seed = static_cast<uint64_t>(s->integer("seed", 1, 0, 1LL << 53));
         s->finish();
     }
-    if (auto r = root.object("rings")) {
-        RingModelParams& m = g.rings;
-        m.enabled = r->choice("model", "stochastic", {"stochastic", "constant"}) == "stochastic";
-        m.meanWidth = r->inRange("mean_width", m.meanWidth, 0, 0.1);
-        m.juvenileFactor = r->inRange("juvenile_factor", m.juvenileFactor, 1, 10);
-        m.juvenileYears = r->inRange("juvenile_years", m.juvenileYears, 0.5, 500);
-        m.variation = r->inRange("variation", m.variation, 0, 2);
-        m.autocorrelation = r->inRange("autocorrelation", m.autocorrelation, 0, 0.95);
-        m.climateShare = r->inRange("climate_share", m.climateShare, 0, 1);
-        m.years = static_cast<int>(r->integer("years", 0, 0, 5000));
-        m.seed = static_cast<uint64_t>(r->integer("seed", 1, 0, 1LL << 53));
-        m.climateSeed = static_cast<uint64_t>(r->integer("climate_seed", 1, 0, 1LL << 53));
-        m.replaceRecorded = r->boolean("replace_recorded", false);
+}
+
+/// The stochastic ring-width model (docs/grain-format.md, "rings").
+void readRingModel(JsonReader& r, RingModelParams& m) {
+    m.enabled = r.choice("model", "stochastic", {"stochastic", "constant"}) == "stochastic";
+    m.meanWidth = r.inRange("mean_width", m.meanWidth, 0, 0.1);
+    m.juvenileFactor = r.inRange("juvenile_factor", m.juvenileFactor, 1, 10);
+    m.juvenileYears = r.inRange("juvenile_years", m.juvenileYears, 0.5, 500);
+    m.variation = r.inRange("variation", m.variation, 0, 2);
+    m.autocorrelation = r.inRange("autocorrelation", m.autocorrelation, 0, 0.95);
+    m.climateShare = r.inRange("climate_share", m.climateShare, 0, 1);
+    m.years = static_cast<int>(r.integer("years", 0, 0, 5000));
+    m.seed = static_cast<uint64_t>(r.integer("seed", 1, 0, 1LL << 53));
+    m.climateSeed = static_cast<uint64_t>(r.integer("climate_seed", 1, 0, 1LL << 53));
+    m.replaceRecorded = r.boolean("replace_recorded", false);
+    r.finish();
+}
+
+/// Fibres, pores, rays and resin canals.
+void readAnatomy(JsonReader& a, AnatomyParams& m) {
+    m.enabled = a.boolean("enabled", true);
+    m.seed = static_cast<uint64_t>(a.integer("seed", 1, 0, 1LL << 53));
+    if (auto f = a.object("fibres")) {
+        m.fibreAmplitude = f->inRange("amplitude", m.fibreAmplitude, 0, 0.5);
+        m.fibreWidth = f->inRange("width", m.fibreWidth, 1e-5, 0.01);
+        m.fibreLength = f->inRange("length", m.fibreLength, 1e-4, 1);
+        f->finish();
+    }
+    if (auto v = a.object("pores")) {
+        std::string kind = v->choice("kind", "none", {"none", "ring-porous", "diffuse-porous"});
+        m.pores = kind == "ring-porous"      ? PoreKind::RingPorous
+                  : kind == "diffuse-porous" ? PoreKind::DiffusePorous
+                                             : PoreKind::None;
+        m.poreDiameter = v->inRange("diameter", m.poreDiameter, 1e-5, 0.002);
+        m.poreSpacing = v->inRange("spacing", m.poreSpacing, 2e-5, 0.01);
+        m.poreLength = v->inRange("length", m.poreLength, 1e-4, 0.1);
+        m.poreBand = v->inRange("band", m.poreBand, 0.01, 1);
+        m.poreDarkening = v->inRange("darkening", m.poreDarkening, 0, 1);
+        m.poreDepth = v->inRange("depth", m.poreDepth, 0, 2);
+        v->finish();
+    }
+    if (auto r = a.object("rays")) {
+        m.raySpacing = r->inRange("spacing", m.raySpacing, 1e-4, 0.05);
+        m.rayWidth = r->inRange("width", m.rayWidth, 0, 0.005);
+        m.rayHeight = r->inRange("height", m.rayHeight, 1e-5, 0.1);
+        m.rayContrast = r->inRange("contrast", m.rayContrast, -0.9, 1);
         r->finish();
     }
-    if (auto a = root.object("anatomy")) {
-        AnatomyParams& m = g.anatomy;
-        m.enabled = a->boolean("enabled", true);
-        m.seed = static_cast<uint64_t>(a->integer("seed", 1, 0, 1LL << 53));
-        if (auto f = a->object("fibres")) {
-            m.fibreAmplitude = f->inRange("amplitude", m.fibreAmplitude, 0, 0.5);
-            m.fibreWidth = f->inRange("width", m.fibreWidth, 1e-5, 0.01);
-            m.fibreLength = f->inRange("length", m.fibreLength, 1e-4, 1);
-            f->finish();
-        }
-        if (auto v = a->object("pores")) {
-            std::string kind = v->choice("kind", "none", {"none", "ring-porous", "diffuse-porous"});
-            m.pores = kind == "ring-porous"      ? PoreKind::RingPorous
-                      : kind == "diffuse-porous" ? PoreKind::DiffusePorous
-                                                 : PoreKind::None;
-            m.poreDiameter = v->inRange("diameter", m.poreDiameter, 1e-5, 0.002);
-            m.poreSpacing = v->inRange("spacing", m.poreSpacing, 2e-5, 0.01);
-            m.poreLength = v->inRange("length", m.poreLength, 1e-4, 0.1);
-            m.poreBand = v->inRange("band", m.poreBand, 0.01, 1);
-            m.poreDarkening = v->inRange("darkening", m.poreDarkening, 0, 1);
-            m.poreDepth = v->inRange("depth", m.poreDepth, 0, 2);
-            v->finish();
-        }
-        if (auto r = a->object("rays")) {
-            m.raySpacing = r->inRange("spacing", m.raySpacing, 1e-4, 0.05);
-            m.rayWidth = r->inRange("width", m.rayWidth, 0, 0.005);
-            m.rayHeight = r->inRange("height", m.rayHeight, 1e-5, 0.1);
-            m.rayContrast = r->inRange("contrast", m.rayContrast, -0.9, 1);
-            r->finish();
-        }
-        if (auto r = a->object("resin_canals")) {
-            m.resinSpacing = r->inRange("spacing", m.resinSpacing, 0, 0.05);
-            m.resinDiameter = r->inRange("diameter", m.resinDiameter, 1e-5, 0.002);
-            m.resinDarkening = r->inRange("darkening", m.resinDarkening, 0, 1);
-            r->finish();
-        }
-        a->finish();
+    if (auto r = a.object("resin_canals")) {
+        m.resinSpacing = r->inRange("spacing", m.resinSpacing, 0, 0.05);
+        m.resinDiameter = r->inRange("diameter", m.resinDiameter, 1e-5, 0.002);
+        m.resinDarkening = r->inRange("darkening", m.resinDarkening, 0, 1);
+        r->finish();
     }
-    if (auto c = root.object("colour")) {
-        ColourParams& cp = g.colour;
-        cp.earlyWood = readRgb(*c, "early_wood", cp.earlyWood, 0);
-        cp.lateWood = readRgb(*c, "late_wood", cp.lateWood, 0);
-        cp.lateWoodExponent = c->inRange("late_wood_exponent", cp.lateWoodExponent, 0.1, 100);
-        cp.lateWoodShare = c->inRange("late_wood_share", cp.lateWoodShare, 0, 0.9);
-        cp.lateWoodTransition =
-            c->inRange("late_wood_transition", cp.lateWoodTransition, 0.005, 0.5);
-        if (c->has("late_wood_profile")) {
-            cp.lateWoodProfile = c->numberList("late_wood_profile");
-            if (cp.lateWoodProfile.size() < 2 || cp.lateWoodProfile.size() > 1024)
-                throw c->error("late_wood_profile",
-                               fmt::format("{} values: expected 2 to 1024 values of E over "
-                                           "one ring",
-                                           cp.lateWoodProfile.size()));
-            for (size_t i = 0; i < cp.lateWoodProfile.size(); ++i)
-                if (!(cp.lateWoodProfile[i] >= 0 && cp.lateWoodProfile[i] <= 1))
-                    throw c->error("late_wood_profile",
-                                   fmt::format("value {} is {}: expected E in [0, 1]", i,
-                                               cp.lateWoodProfile[i]));
-        }
-        if (auto h = c->object("heartwood")) {
-            cp.heartwood = h->boolean("enabled", cp.heartwood);
-            cp.heartwoodStart = h->nonNegative("start", cp.heartwoodStart);
-            cp.heartwoodEnd = h->nonNegative("end", cp.heartwoodEnd);
-            if (cp.heartwoodEnd < cp.heartwoodStart)
-                throw h->error("end", fmt::format("expected end >= start ({}), found {}",
-                                                  cp.heartwoodStart, cp.heartwoodEnd));
-            cp.heartwoodOffset = readRgb(*h, "heartwood_offset", cp.heartwoodOffset, -1);
-            cp.sapwoodOffset = readRgb(*h, "sapwood_offset", cp.sapwoodOffset, -1);
-            h->finish();
-        }
-        if (auto m = c->object("micro")) {
-            cp.microCellSize = m->positive("cell_size", cp.microCellSize);
-            cp.microAmplitude = m->inRange("amplitude", cp.microAmplitude, 0, 1);
-            cp.microSeed = static_cast<uint64_t>(m->integer("seed", 7, 0, 1LL << 53));
-            m->finish();
-        }
-        if (auto k = c->object("knots")) {
-            cp.knotDarkening = k->inRange("darkening", cp.knotDarkening, 0, 1);
-            cp.deadKnotDarkening = k->inRange("dead_darkening", cp.deadKnotDarkening, 0, 1);
-            cp.knotCore = k->inRange("core", cp.knotCore, 0, 1);
-            cp.deadKnotRim = k->inRange("dead_rim", cp.deadKnotRim, 0, 1);
-            cp.deadKnotRimWidth = k->inRange("dead_rim_width", cp.deadKnotRimWidth, 0, 0.05);
-            cp.deadKnotChecks = k->inRange("dead_checks", cp.deadKnotChecks, 0, 1);
-            cp.deadKnotCheckWidth = k->inRange("dead_check_width", cp.deadKnotCheckWidth, 0, 0.01);
-            cp.knotTint = readRgb(*k, "tint", cp.knotTint, 0);
-            cp.deadKnotTint = readRgb(*k, "dead_tint", cp.deadKnotTint, 0);
-            k->finish();
-        }
-        if (auto e = c->object("end_grain")) {
-            cp.endGrainDarkening = e->inRange("darkening", cp.endGrainDarkening, 0, 0.9);
-            cp.endGrainRedness = e->inRange("redness", cp.endGrainRedness, 0, 1);
-            e->finish();
-        }
-        c->finish();
+    a.finish();
+}
+
+/// The early-to-late-wood profile measured from a photograph (nenrin grain strip).
+void readLateWoodProfile(JsonReader& c, ColourParams& cp) {
+    if (!c.has("late_wood_profile")) return;
+    cp.lateWoodProfile = c.numberList("late_wood_profile");
+    if (cp.lateWoodProfile.size() < 2 || cp.lateWoodProfile.size() > 1024)
+        throw c.error("late_wood_profile", fmt::format("{} values: expected 2 to 1024 values of E "
+                                                       "over one ring",
+                                                       cp.lateWoodProfile.size()));
+    for (size_t i = 0; i < cp.lateWoodProfile.size(); ++i)
+        if (!(cp.lateWoodProfile[i] >= 0 && cp.lateWoodProfile[i] <= 1))
+            throw c.error("late_wood_profile", fmt::format("value {} is {}: expected E in [0, 1]",
+                                                           i, cp.lateWoodProfile[i]));
+}
+
+/// Knot colours: darkening, core, a dead knot's rim and checks, tints.
+void readKnotColours(JsonReader& k, ColourParams& cp) {
+    cp.knotDarkening = k.inRange("darkening", cp.knotDarkening, 0, 1);
+    cp.deadKnotDarkening = k.inRange("dead_darkening", cp.deadKnotDarkening, 0, 1);
+    cp.knotCore = k.inRange("core", cp.knotCore, 0, 1);
+    cp.deadKnotRim = k.inRange("dead_rim", cp.deadKnotRim, 0, 1);
+    cp.deadKnotRimWidth = k.inRange("dead_rim_width", cp.deadKnotRimWidth, 0, 0.05);
+    cp.deadKnotChecks = k.inRange("dead_checks", cp.deadKnotChecks, 0, 1);
+    cp.deadKnotCheckWidth = k.inRange("dead_check_width", cp.deadKnotCheckWidth, 0, 0.01);
+    cp.knotTint = readRgb(k, "tint", cp.knotTint, 0);
+    cp.deadKnotTint = readRgb(k, "dead_tint", cp.deadKnotTint, 0);
+    k.finish();
+}
+
+/// The wood's colour: early and late wood, their profile, heartwood, micro-structure, knots
+/// and the end grain.
+void readColour(JsonReader& c, ColourParams& cp) {
+    cp.earlyWood = readRgb(c, "early_wood", cp.earlyWood, 0);
+    cp.lateWood = readRgb(c, "late_wood", cp.lateWood, 0);
+    cp.lateWoodExponent = c.inRange("late_wood_exponent", cp.lateWoodExponent, 0.1, 100);
+    cp.lateWoodShare = c.inRange("late_wood_share", cp.lateWoodShare, 0, 0.9);
+    cp.lateWoodTransition = c.inRange("late_wood_transition", cp.lateWoodTransition, 0.005, 0.5);
+    readLateWoodProfile(c, cp);
+    if (auto h = c.object("heartwood")) {
+        cp.heartwood = h->boolean("enabled", cp.heartwood);
+        cp.heartwoodStart = h->nonNegative("start", cp.heartwoodStart);
+        cp.heartwoodEnd = h->nonNegative("end", cp.heartwoodEnd);
+        if (cp.heartwoodEnd < cp.heartwoodStart)
+            throw h->error("end", fmt::format("expected end >= start ({}), found {}",
+                                              cp.heartwoodStart, cp.heartwoodEnd));
+        cp.heartwoodOffset = readRgb(*h, "heartwood_offset", cp.heartwoodOffset, -1);
+        cp.sapwoodOffset = readRgb(*h, "sapwood_offset", cp.sapwoodOffset, -1);
+        h->finish();
     }
+    if (auto m = c.object("micro")) {
+        cp.microCellSize = m->positive("cell_size", cp.microCellSize);
+        cp.microAmplitude = m->inRange("amplitude", cp.microAmplitude, 0, 1);
+        cp.microSeed = static_cast<uint64_t>(m->integer("seed", 7, 0, 1LL << 53));
+        m->finish();
+    }
+    if (auto k = c.object("knots")) readKnotColours(*k, cp);
+    if (auto e = c.object("end_grain")) {
+        cp.endGrainDarkening = e->inRange("darkening", cp.endGrainDarkening, 0, 0.9);
+        cp.endGrainRedness = e->inRange("redness", cp.endGrainRedness, 0, 1);
+        e->finish();
+    }
+    c.finish();
+}
+
+}  // namespace
+
+GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
+    GrainParams g;
+    JsonReader root(json, file);
+    root.string("description", "");
+    root.choice("format", "nenrin-grain", {"nenrin-grain"});
+    root.object("reference");  // what a preset was made from (colour measurements, sources):
+                               // read by people and tests, not by nenrin
+    g.radialSpeed = root.positive("radial_speed", g.radialSpeed);
+    g.fellingTime = root.nonNegative("felling_time", g.fellingTime);
+    readGrowthTerms(root, g);
+    if (auto r = root.object("rings")) readRingModel(*r, g.rings);
+    if (auto a = root.object("anatomy")) readAnatomy(*a, g.anatomy);
+    if (auto c = root.object("colour")) readColour(*c, g.colour);
     root.finish();
     return g;
 }
