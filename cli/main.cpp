@@ -19,6 +19,8 @@
 #include "util/input_error.h"
 
 int main(int argc, char** argv) {
+    // Before any thread starts: a killed command leaves no temporary output behind.
+    nenrin::removeOutputsOnSignals();
     CLI::App app{"nenrin " NENRIN_VERSION
                  " - wood that grew: growth-time rings around knots, baked and rendered"};
     app.set_version_flag("--version", NENRIN_VERSION);

@@ -11,6 +11,7 @@
 #include "renderer/scene_file.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
+#include "util/memory_budget.h"
 
 namespace nenrin {
 
@@ -130,6 +131,11 @@ void addPovCommands(CLI::App& app) {
         options.volumeResolution = p->volume;
         options.threads = p->threads;
         options.quiet = p->quiet;
+        const PovOutputSize size = povOutputSize(*scene, options);
+        if (size.volumes > 0)
+            fmt::print("writing {} of df3 volumes ({} wood object{} at --volume {})\n",
+                       formatBytes(size.bytes), size.volumes, size.volumes == 1 ? "" : "s",
+                       options.volumeResolution);
         for (const auto& f : exportPovScene(*scene, p->output, options))
             fmt::print("wrote {}\n", f);
     });

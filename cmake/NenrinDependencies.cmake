@@ -37,3 +37,4 @@ endif()
 # append its folder last, after everything else was found.
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
+find_package(Threads REQUIRED)

@@ -10,13 +10,56 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <set>
 #include <system_error>
+#include <thread>
 
 #include "util/input_error.h"
 
 namespace nenrin {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+/// Every temporary file that may exist now: registered before it is created, released once it
+/// is renamed or removed. What a caught signal removes.
+struct InFlight {
+    std::mutex mutex;
+    std::set<std::string> paths;
+};
+InFlight& inFlight() {
+    static InFlight* f = new InFlight;  // never destroyed: the signal thread may outlive main
+    return *f;
+}
+void track(const std::string& path) {
+    std::lock_guard<std::mutex> lock(inFlight().mutex);
+    inFlight().paths.insert(path);
+}
+void untrack(const std::string& path) {
+    std::lock_guard<std::mutex> lock(inFlight().mutex);
+    inFlight().paths.erase(path);
+}
+
+constexpr int kCleanUpSignals[] = {SIGTERM, SIGINT, SIGHUP};
+
+}  // namespace
+
+void removeOutputsOnSignals() {
+    sigset_t set;
+    sigemptyset(&set);
+    for (int s : kCleanUpSignals) sigaddset(&set, s);
+    // Blocked here, so in every thread started later: only the waiting thread takes them.
+    if (pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return;
+    std::thread([set] {
+        int sig = 0;
+        if (sigwait(&set, &sig) != 0) return;
+        // The lock is never released: no thread registers a new file after this.
+        inFlight().mutex.lock();
+        for (const std::string& path : inFlight().paths) ::unlink(path.c_str());
+        _exit(128 + sig);
+    }).detach();
+}
 
 void checkOutputPath(const std::string& path) {
     if (path.empty()) throw InputError("", "output", "empty output path");
@@ -113,12 +156,14 @@ AtomicOutput::AtomicOutput(std::string path) : final_(std::move(path)) {
     name += std::to_string(getpid());
     name += p.extension().string();
     temporary_ = (dir / name).string();
+    track(temporary_);
 }
 
 AtomicOutput::~AtomicOutput() {
     if (!committed_) {
         std::error_code ec;
         fs::remove(temporary_, ec);
+        untrack(temporary_);
     }
 }
 
@@ -155,7 +200,10 @@ OutputTransaction::OutputTransaction() {
 OutputTransaction::~OutputTransaction() {
     std::lock_guard<std::mutex> lock(pendingMutex());
     std::error_code ec;
-    for (const auto& [temporary, final] : pending().files) fs::remove(temporary, ec);
+    for (const auto& [temporary, final] : pending().files) {
+        fs::remove(temporary, ec);
+        untrack(temporary);
+    }
     pending() = {};
 }
 
@@ -166,6 +214,7 @@ void commitOutputs() {
     // are removed with the transaction.
     while (!files.empty()) {
         rename(files.front().first, files.front().second);
+        untrack(files.front().first);
         files.erase(files.begin());
     }
 }
@@ -180,6 +229,7 @@ void AtomicOutput::commit() {
         }
     }
     rename(temporary_, final_);
+    untrack(temporary_);
     committed_ = true;
 }
 

@@ -3,7 +3,8 @@
 /// temporary file in the same folder (same extension, so format-sniffing writers still work),
 /// and commit() renames it over the final name. If commit() is never reached (an error, an
 /// exception), the destructor removes the temporary file; one left by a process that was killed
-/// while writing is removed by the next AtomicOutput of the same name.
+/// while writing is removed by the next AtomicOutput of the same name; after
+/// removeOutputsOnSignals(), SIGTERM, SIGINT and SIGHUP remove every temporary file first.
 
 #include <string>
 #include <utility>
@@ -44,6 +45,12 @@ public:
 /// must publish some outputs before it goes on: a batch after each frame, job scripts before
 /// they are submitted). Without a transaction, nothing to do.
 void commitOutputs();
+
+/// Call first thing in main, before any thread starts: SIGTERM (timeout, SLURM limits,
+/// preemption), SIGINT (Ctrl-C) and SIGHUP then remove every temporary output file in flight
+/// (written or handed to the transaction, not yet renamed) and end the process with exit code
+/// 128 + the signal. Only SIGKILL still leaves one, for the next run of that output to remove.
+void removeOutputsOnSignals();
 
 class AtomicOutput {
 public:

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "util/input_error.h"
@@ -82,6 +83,16 @@ void requireMemory(double bytes, const std::string& what, const std::string& sou
     throw InputError(source, "",
                      fmt::format("{} needs about {}, over {} of {}", what, formatBytes(bytes),
                                  whose, formatBytes(double(limit))));
+}
+
+void requireOutputSpace(double bytes, const std::string& what, const std::string& folder) {
+    requireMemory(bytes, what, folder);
+    std::error_code ec;
+    const std::filesystem::space_info space = std::filesystem::space(folder, ec);
+    if (!ec && bytes > double(space.available))
+        throw InputError(folder, "",
+                         fmt::format("{} needs about {}, but the disk has {} free", what,
+                                     formatBytes(bytes), formatBytes(double(space.available))));
 }
 
 }  // namespace nenrin

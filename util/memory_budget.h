@@ -29,4 +29,9 @@ uint64_t parseByteSize(const std::string& text);
 /// memoryLimit() (raise it with --max-memory), if bytes exceeds the limit.
 void requireMemory(double bytes, const std::string& what, const std::string& source);
 
+/// The same for output files of about `bytes` written into `folder`: refused when over the
+/// memory limit (--max-memory bounds what a command may write too) or over the free space of
+/// the folder's file system, naming the folder.
+void requireOutputSpace(double bytes, const std::string& what, const std::string& folder);
+
 }  // namespace nenrin

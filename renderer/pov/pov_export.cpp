@@ -58,8 +58,8 @@ void objectBounds(const SceneObject& o, Vec3& lo, Vec3& hi) {
 
 /// The wood's albedo sampled on a lattice over the object's bounds (object space, cell corners
 /// i / (S - 1) as df3 interpolation wants them), each point through its own board's transform.
-BakedGrid bakeObjectVolume(const SceneObject& o, const WoodShader& shader, int resolution,
-                           int threads) {
+/// The lattice of an object's df3 volume (no samples yet): `resolution` along its longest side.
+BakedGrid objectLattice(const SceneObject& o, int resolution) {
     Vec3 lo, hi;
     objectBounds(o, lo, hi);
     Vec3 size = hi - lo;
@@ -75,6 +75,12 @@ BakedGrid bakeObjectVolume(const SceneObject& o, const WoodShader& shader, int r
     g.stepX = {size.x / (g.width - 1), 0, 0};
     g.stepY = {0, size.y / (g.height - 1), 0};
     g.stepZ = {0, 0, size.z / (g.depth - 1)};
+    return g;
+}
+
+BakedGrid bakeObjectVolume(const SceneObject& o, const WoodShader& shader, int resolution,
+                           int threads) {
+    BakedGrid g = objectLattice(o, resolution);
     requireMemory(bakeMemoryBytes(g),
                   fmt::format("the df3 volume of object \"{}\" ({} x {} x {} samples at --volume "
                               "{})",
@@ -243,10 +249,28 @@ void writeText(const std::string& path, const std::string& text, const char* wha
 
 }  // namespace
 
+PovOutputSize povOutputSize(const Scene& scene, const PovExportOptions& options) {
+    PovOutputSize size;
+    for (const SceneObject& o : scene.objects) {
+        if (scene.materials[o.material].type != MaterialType::Wood) continue;
+        const BakedGrid g = objectLattice(o, options.volumeResolution);
+        // R, G, B and knot df3 files: a 6-byte header and 16 bits a sample.
+        size.bytes += 4 * (6 + 2 * double(g.width) * g.height * g.depth);
+        ++size.volumes;
+    }
+    return size;
+}
+
 std::vector<std::string> exportPovScene(const Scene& scene, const std::string& folder,
                                         const PovExportOptions& options) {
     if (!fs::is_directory(folder))
         throw InputError(folder, "-o", "expected an existing folder for the POV-Ray scene");
+    const PovOutputSize size = povOutputSize(scene, options);
+    requireOutputSpace(size.bytes,
+                       fmt::format("writing the df3 volumes of {} wood object{} at --volume {}",
+                                   size.volumes, size.volumes == 1 ? "" : "s",
+                                   options.volumeResolution),
+                       folder);
     std::vector<std::string> written;
     std::string pov = povCameraAndLights(scene);
     for (size_t i = 0; i < scene.objects.size(); ++i) {

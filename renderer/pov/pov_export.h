@@ -26,8 +26,16 @@ struct PovExportOptions {
     bool quiet = false;
 };
 
+/// What the export writes: its df3 volumes dominate (a `--volume 1024` twin is gigabytes).
+struct PovOutputSize {
+    double bytes = 0;  ///< of the df3 files
+    int volumes = 0;   ///< wood objects, each with its R, G, B and knot files
+};
+PovOutputSize povOutputSize(const Scene& scene, const PovExportOptions& options);
+
 /// Writes FOLDER/scene.pov, FOLDER/scene.ini (resolution and the reference render options) and
-/// the df3 volumes of the wood objects. Returns the files written.
+/// the df3 volumes of the wood objects. Returns the files written. Refuses up front (InputError)
+/// when the volumes would not fit the disk's free space or the memory limit (requireOutputSpace).
 std::vector<std::string> exportPovScene(const Scene& scene, const std::string& folder,
                                         const PovExportOptions& options);
 

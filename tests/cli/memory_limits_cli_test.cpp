@@ -25,6 +25,14 @@ TEST_F(MemoryLimitsCliTest, RenderUvBakeAndPovVolumesAreChecked) {
              (out_ / "x.exr").string()}),
         {"small-glulam.json: a 96x64 frame needs about 960 KiB", "--max-memory limit of 512 KiB"});
     fs::create_directories(in_ / "twin");  // pov writes into an existing folder
+    // The twin's df3 files count against the limit too, and their size is said first.
+    const RunResult twin = run({"pov", kScene.string(), "--volume", "1024", "--max-memory", "100M",
+                                "-q", "-o", (in_ / "twin").string()});
+    expectInputError(twin, {"twin: writing the df3 volumes of 1 wood object at --volume 1024",
+                            "over the --max-memory"});
+    EXPECT_NE(twin.out.find("of df3 volumes (1 wood object at --volume 1024)"), std::string::npos)
+        << twin.out;
+    EXPECT_TRUE(fs::is_empty(in_ / "twin"));
     expectInputError(
         run({"pov", kScene.string(), "--volume", "1024", "--max-memory", "1G", "-q", "-o",
              (in_ / "twin").string()}),

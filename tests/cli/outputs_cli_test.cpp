@@ -1,6 +1,8 @@
 // End-to-end tests of how outputs are written: a command's outputs reach their names together
 // or not at all, and an existing target that is not a regular file is never replaced.
 
+#include <fmt/ranges.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 
@@ -58,6 +60,45 @@ TEST_F(OutputsCliTest, PartialFilesOfKilledRunsAreCleanedUp) {
     EXPECT_FALSE(fs::exists(stale));
     EXPECT_TRUE(fs::exists(live));
     EXPECT_TRUE(fs::exists(out_ / "a.exr"));
+}
+
+TEST_F(OutputsCliTest, CaughtSignalsLeaveNoTemporaryFileBehind) {
+    // SIGTERM (timeout, SLURM), SIGINT (Ctrl-C) and SIGHUP while a volume is being written:
+    // the run ends with 128 + the signal and its hidden temporary file is gone.
+    for (int sig : {SIGTERM, SIGINT, SIGHUP}) {
+        SCOPED_TRACE(strsignal(sig));
+        const std::vector<std::string> args =
+            bakeArgs("volume",
+                     {{"--skeleton", skeletonScene("conifer.json").string()},
+                      {"--box", "-0.2,-0.2,0,0.2,0.2,2"},
+                      {"--res", "400"},
+                      {"-o", (out_ / "v.exr").string()}},
+                     {});
+        std::vector<char*> argv{const_cast<char*>(kBinary.c_str())};
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        const pid_t pid = fork();
+        ASSERT_GE(pid, 0);
+        if (pid == 0) {
+            if (chdir(out_.c_str()) != 0) _exit(120);
+            execv(kBinary.c_str(), argv.data());
+            _exit(121);
+        }
+        // Wait until the volume is being written (at most two minutes, under sanitizers).
+        bool writing = false;
+        for (int i = 0; i < 1200 && !writing; ++i) {
+            for (const std::string& f : outputFiles())
+                writing = writing || f.find(".partial-") != std::string::npos;
+            if (!writing) usleep(100000);
+        }
+        ASSERT_TRUE(writing) << "no temporary file appeared";
+        ASSERT_EQ(kill(pid, sig), 0);
+        int status = 0;
+        ASSERT_EQ(waitpid(pid, &status, 0), pid);
+        ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status);
+        EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+        EXPECT_TRUE(outputFiles().empty()) << fmt::format("{}", fmt::join(outputFiles(), ", "));
+    }
 }
 
 }  // namespace
