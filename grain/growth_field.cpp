@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "grain/field_bounds.h"
+#include "grain/field_rings.h"
 #include "grain/growth_terms.h"
 #include "skeleton/segment_geometry.h"
 
@@ -59,46 +60,10 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
     // Largest radial speed any path can have (taper x direction x jitter): distance bounds.
     speedBound_ = params_.radialSpeed * (1 + params_.taper.nu) * (1 + params_.direction.strength) /
                   (1 - params_.sway.radialJitter);
-    std::vector<double> widths = sk.ringWidths();
-    const RingModelParams& m = params_.rings;
-    const bool modelled = m.enabled && (widths.empty() || m.replaceRecorded);
-    if (modelled) {
-        // The grain's stochastic series, as long as the tree lived (or as the recorded one).
-        double mean = m.meanWidth > 0 ? m.meanWidth : params_.radialSpeed;
-        int years = m.years > 0               ? m.years
-                    : params_.fellingTime > 0 ? static_cast<int>(std::ceil(params_.fellingTime)) + 1
-                                              : 150;
-        if (!widths.empty()) {
-            double sum = 0;
-            for (double w : widths) sum += w;
-            if (m.meanWidth <= 0 && sum > 0) mean = sum / double(widths.size());
-            if (m.years <= 0) years = static_cast<int>(widths.size());
-        }
-        widths = generateRingWidths(m, years, mean);
-    }
-    // The profile's own late-wood share S: where its E crosses 1/2.
-    const LateWoodShape shape = lateWoodShape(params_.colour);
-    double lo = 0, hi = 1;
-    for (int i = 0; i < 50; ++i) {
-        double mid = 0.5 * (lo + hi);
-        (lateWoodFraction(mid, shape) < 0.5 ? lo : hi) = mid;
-    }
-    const double profileShare = 1 - 0.5 * (lo + hi);
-    if (!sk.latewoodShares().empty()) {
-        latewoodTiming_ = LatewoodTiming(sk.latewoodShares(), profileShare);
-    } else if (modelled && !widths.empty()) {
-        // Late wood varies less from year to year than early wood: its share grows in narrow
-        // rings, as the square root of the mean width over the year's.
-        double mean = 0;
-        for (double w : widths) mean += w / double(widths.size());
-        std::vector<double> shares;
-        for (double w : widths)
-            shares.push_back(
-                std::clamp(profileShare * std::sqrt(mean / std::max(w, 1e-9 * mean)), 0.05, 0.9));
-        latewoodTiming_ = LatewoodTiming(std::move(shares), profileShare);
-    }
-    if (!widths.empty()) {
-        radialGrowth_ = RadialGrowth(widths, params_.radialSpeed);
+    const FieldRings rings = fieldRingWidths(sk, params_);
+    latewoodTiming_ = fieldLatewoodTiming(sk, rings, lateWoodShape(params_.colour));
+    if (!rings.widths.empty()) {
+        radialGrowth_ = RadialGrowth(rings.widths, params_.radialSpeed);
         // Years faster than Sb shorten thickening times by up to this ratio; the distance
         // bounds pass their years through the age warp, hence the 1/delta power.
         speedBound_ *= std::pow(radialGrowth_.maxSpeedRatio(), 1 / params_.age.delta);
