@@ -76,11 +76,10 @@ GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec
     PathTime r;
     r.axisPoint = s.a + s.ab * t;
     r.axisDirection = s.axis;
-    r.Ta = s.birthA + s.birthDelta * t;
+    r.Ta = elongationTime(s.birthA, s.birthDelta, t);  // eq. 2
     Vec3 d = p - r.axisPoint;
     r.distance = length(d);
-    // Eq. 3/3' (thickeningTime): Tb = Db / S with S = Sb gamma (x taper, x direction); without
-    // those terms it is a product with the segment's precomputed 1 / (Sb gamma).
+    // Eq. 3/3': Tb = Db / S with S = Sb gamma (x taper, x direction).
     double db = r.distance;
     double speedFactor = taperFactor(r.Ta, params_.taper.nu, params_.taper.omega);
     // The outward normal only matters to the direction term and the radial jitter.
@@ -89,9 +88,7 @@ GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec
         speedFactor *= directionFactor(n, params_.direction.sunRay, params_.direction.strength);
         if (sway_.radialJitter != 0) db *= swayRadialFactor(n, s.axis, r.Ta, sway_);
     }
-    double years = db * s.inverseSpeed;
-    if (speedFactor != 1) years /= speedFactor;
-    r.Tb = ageWarp(years, params_.age.delta);
+    r.Tb = ageWarp(thickeningTime(db, s.inverseSpeed, speedFactor), params_.age.delta);
     if (!radialGrowth_.empty()) r.Tb = radialGrowth_.arrivalTime(r.Ta, r.Tb) - r.Ta;
     r.T = r.Ta + r.Tb;
     if (s.branch) r.T = dieback(r.T, s.deathTime, s.diebackExponent);
@@ -128,18 +125,19 @@ GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3&
     if (!hasPrevious && !hasNext) return segmentPathTime(segmentId, p, proj.tRaw);
 
     PathTime own{};
-    double weighted = 0, weights = 0;
-    for (int i = 0; i < count; ++i) {  // chain order: the sum is the same from either side
+    double times[3], planeDistances[3];
+    for (int i = 0; i < count; ++i) {  // in chain order
         const Member& m = members[i];
         double w = kInf;
         if (i > 0) w = std::min(w, m.tRaw * m.length);                // joint with previous
         if (i + 1 < count) w = std::min(w, (1 - m.tRaw) * m.length);  // joint with next
         PathTime pt = segmentPathTime(m.id, p, m.tRaw);
         if (m.id == segmentId) own = pt;
-        weighted += w * pt.T;
-        weights += w;
+        times[i] = pt.T;
+        planeDistances[i] = w;
     }
-    if (weights > 0) own.T = weighted / weights;
+    const size_t n = static_cast<size_t>(count);
+    own.T = jointBlend({times, n}, {planeDistances, n}, own.T);
     return own;
 }
 
@@ -447,25 +445,24 @@ void GrowthField::evaluateBranches(std::span<const Vec3> pts, std::span<GrowthSa
         }
         if (terms.empty()) continue;
 
-        // Eq. 5 over the trunk and every branch path (junctionTerm / junctionCombine).
+        // Eq. 5 over the trunk and every branch path.
         double m = t1;
         for (const auto& t : terms) m = std::min(m, t.time / t.sinAlpha);
         if (m <= 0) {
             g.T = 0;
             continue;
         }
-        double trunkTerm = junctionTerm(m, t1, p);
-        double sum = trunkTerm, dead = 0, strongest = 0;
+        JunctionSum sum(m, t1, p);
+        double dead = 0, strongest = 0;
         const GrowthScratch::ChainTerm* top = nullptr;
         for (const auto& t : terms) {
-            double u = t.weight * junctionTerm(m, t.time / t.sinAlpha, p);
-            sum += u;
+            double u = sum.add(t.time / t.sinAlpha, t.weight);
             dead += t.dead * u;
             if (u > strongest) strongest = u, top = &t;
         }
-        g.T = junctionCombine(m, sum, p);
-        g.knot = (sum - trunkTerm) / sum;
-        g.deadKnot = dead / sum;
+        g.T = sum.time();
+        g.knot = sum.branchShare();
+        g.deadKnot = dead / sum.sum();
         if (top) describeKnot(*top, pt, t1, g);
     }
 }
