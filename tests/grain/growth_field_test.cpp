@@ -296,6 +296,29 @@ TEST(GrowthField, BatchAndSingleEvaluationAreBitwiseEqual) {
     }
 }
 
+TEST(GrowthField, AScratchCopiedOrMovedStillServes) {
+    Vec3 dir = normalize(Vec3{1, 0, 0.7});
+    Skeleton sk = test::trunkWithBranch(2, dir, 1.5, {0.5, kNeverDies, 0}, 10, kSa);
+    SkeletonIndex index(sk);
+    GrowthField f(index, plainGrain());
+    std::vector<Vec3> points;
+    for (int i = 0; i < 100; ++i) points.push_back(Vec3{0, 0, 2} + dir * (0.001 * i));
+    std::vector<GrowthSample> a(points.size()), b(points.size()), c(points.size());
+    GrowthScratch used;
+    f.evaluateBatch(points, a, used);
+    GrowthScratch copy(used), moved(std::move(used));
+    f.evaluateBatch(points, b, copy);
+    f.evaluateBatch(points, c, moved);
+    used = copy;  // a moved-from scratch may be assigned again, and serves again
+    f.evaluateBatch(points, c, used);
+    for (size_t i = 0; i < points.size(); ++i) {
+        ASSERT_EQ(a[i].T, b[i].T);
+        ASSERT_EQ(a[i].T, c[i].T);
+        ASSERT_EQ(a[i].knot, c[i].knot);
+    }
+    EXPECT_GT(a[50].knot, 0.5);
+}
+
 TEST(GrowthField, BundledConiferHasLiveAndDeadKnots) {
     Skeleton sk =
         loadSkeletonFile(std::string(NENRIN_SOURCE_DIR) + "/scenes/skeletons/conifer.json");
