@@ -13,24 +13,24 @@ namespace nenrin {
 
 namespace {
 
-/// The trunk candidates that can be the nearest of some point of the chunk: a point's nearest
-/// lies within the chunk centre's nearest distance plus twice the half-diagonal (sorted order
-/// is kept, so ties still go to the smaller id).
+/// The batch's trunk candidates (sorted) that can be the nearest of some point of the chunk,
+/// in `kept`: a point's nearest lies within the chunk centre's nearest distance plus twice
+/// the half-diagonal (sorted order is kept, so ties still go to the smaller id).
 std::span<const uint32_t> keepTrunkCandidates(std::span<const FieldSegment> segments,
-                                              const PointBox& chunk, TrunkBuffers& buffers) {
+                                              std::span<const uint32_t> candidates,
+                                              const PointBox& chunk, std::vector<double>& dist,
+                                              std::vector<uint32_t>& kept) {
     const Vec3 cc = chunk.centre();
     const double ch = chunk.halfDiagonal();
-    auto& dist = buffers.centreDistances;
     dist.clear();
     double nearest = kInf;
-    for (uint32_t id : buffers.candidates) {
+    for (uint32_t id : candidates) {
         dist.push_back(std::sqrt(project(segments[id], cc).distance2));
         nearest = std::min(nearest, dist.back());
     }
-    auto& kept = buffers.kept;
     kept.clear();
-    for (size_t k = 0; k < buffers.candidates.size(); ++k)
-        if (dist[k] <= nearest + 2 * ch + 1e-9) kept.push_back(buffers.candidates[k]);
+    for (size_t k = 0; k < candidates.size(); ++k)
+        if (dist[k] <= nearest + 2 * ch + 1e-9) kept.push_back(candidates[k]);
     return kept;
 }
 
@@ -98,16 +98,18 @@ double GrowthField::evaluateTrunk(std::span<const Vec3> points, const PointBox& 
     // segment is within d0 + 2h of the centre.
     const Vec3 centre = batch.centre();
     NearestSegment near = index_->trunk().nearest(centre);
-    buffers.candidates.clear();
+    std::vector<uint32_t>& candidates = buffers.candidates;
+    candidates.clear();
     index_->trunk().gather(centre, std::sqrt(near.distance2) + 2 * batch.halfDiagonal() + 1e-9,
-                           buffers.candidates);
-    std::sort(buffers.candidates.begin(), buffers.candidates.end());
+                           candidates);
+    std::sort(candidates.begin(), candidates.end());
 
     double maxTrunkTime = 0;
     for (size_t c0 = 0; c0 < points.size(); c0 += kChunk) {
         const size_t c1 = std::min(points.size(), c0 + kChunk);
         const PointBox chunk = boxOf(points.subspan(c0, c1 - c0));
-        const std::span<const uint32_t> kept = keepTrunkCandidates(segments_, chunk, buffers);
+        const std::span<const uint32_t> kept = keepTrunkCandidates(
+            segments_, candidates, chunk, buffers.centreDistances, buffers.kept);
         const int32_t plain = plainSegment(segments_, kept, chunk);
         for (size_t i = c0; i < c1; ++i) {
             const Vec3& p = points[i];
