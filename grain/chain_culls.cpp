@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "grain/field_bounds.h"
+#include "grain/field_passes.h"
 #include "grain/growth_field.h"
 #include "grain/growth_terms.h"
 
@@ -25,9 +26,8 @@ double GrowthField::branchSearchRadius(double trunkTime) const {
            ageUnwarp(params_.junction.reach * std::max(trunkTime, 0.0), params_.age.delta);
 }
 
-bool GrowthField::chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi, const Vec3& centre,
+bool GrowthField::chainMayMatter(uint32_t chain, const PointBox& box, const Vec3& centre,
                                  double radius, double maxTrunkTime, ChainReach& out) const {
-    const PointBox box{lo, hi};
     const double reachTrunkTime = params_.junction.reach * maxTrunkTime;
     // 1. Born too late to come in under reach x T1 anywhere (sin(alpha) <= 1).
     const ChainFrame& frame = chainFrames_[chain];
@@ -67,32 +67,61 @@ bool GrowthField::chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi,
     return out.nearest.segment != kNone;
 }
 
-void GrowthField::prepareTileChains(GrowthScratch& scratch, std::span<const uint32_t> candidates,
-                                    const Vec3& lo, const Vec3& hi, double halfDiagonal,
-                                    double maxTrunkTime) const {
+bool GrowthField::chainMayMatterInside(uint32_t chain, const PointBox& box,
+                                       double maxTrunkTime) const {
+    ChainReach reach;
+    return chainMayMatter(chain, box, box.centre(), 2 * box.halfDiagonal(), maxTrunkTime, reach);
+}
+
+void GrowthField::nearbyChains(const PointBox& batch, double maxTrunkTime,
+                               std::vector<uint32_t>& chains) const {
+    // The chains with a segment near the batch, in chain order: each is then searched
+    // through its own hierarchy, however finely it is divided.
+    chains.clear();
+    index_->branchChains().gather(
+        batch.centre(), branchSearchRadius(maxTrunkTime) + batch.halfDiagonal() + 1e-9, chains);
+    std::sort(chains.begin(), chains.end());
+    chains.erase(std::unique(chains.begin(), chains.end()), chains.end());
+    // Tests 1-3 once for the whole batch: a chain that fails here is not tested again per
+    // group or chunk.
+    std::erase_if(
+        chains, [&](uint32_t chain) { return !chainMayMatterInside(chain, batch, maxTrunkTime); });
+}
+
+std::span<const uint32_t> GrowthField::cullChains(std::span<const uint32_t> chains,
+                                                  const PointBox& group, double maxTrunkTime,
+                                                  std::vector<uint32_t>& kept) const {
+    kept.clear();
+    for (const uint32_t chain : chains)
+        if (chainMayMatterInside(chain, group, maxTrunkTime)) kept.push_back(chain);
+    return kept;
+}
+
+void GrowthField::prepareTileChains(std::span<const uint32_t> candidates, const PointBox& chunk,
+                                    double maxTrunkTime, PointQuarters& quarters, TileChains& out,
+                                    CullBuffers& buffers) const {
     // Keep the chains near the batch that can matter for some point of the tile; every test
     // here is exact (a bound over the whole box), so results do not depend on tiling.
-    const PointBox box{lo, hi};
-    const Vec3 centre = box.centre();
-    auto& chains = scratch.tileChains;
-    chains.clear();
-    auto& kept = scratch.keptSegments;
+    const Vec3 centre = chunk.centre();
+    const double halfDiagonal = chunk.halfDiagonal();
+    out.chains.clear();
+    SegmentBatch& kept = out.segments;
     kept.reset(centre);
     for (const uint32_t chain : candidates) {
         // 1-3: births, plane F and distance, over the chunk's bounding ball.
         ChainReach reach;
-        if (!chainMayMatter(chain, lo, hi, centre, halfDiagonal, maxTrunkTime, reach)) continue;
+        if (!chainMayMatter(chain, chunk, centre, halfDiagonal, maxTrunkTime, reach)) continue;
         const ChainFrame& frame = chainFrames_[chain];
         const double reachTime = reach.reachTime;
         const ChainTrees::Nearest& nearestToCentre = reach.nearest;
         const double nearest = std::sqrt(nearestToCentre.distance2);
         // 4. Segments that cannot be any point's nearest (on a straight run, all but the few
         //    the box projects onto).
-        auto& ids = scratch.chainSegments;
+        auto& ids = buffers.chainSegments;
         ids.clear();
         const double farthest = chainTrees_.candidates(
-            chain, lo, hi, static_cast<uint32_t>(nearestToCentre.segment), ids);
-        GrowthScratch::TileChain tc;
+            chain, chunk.lo, chunk.hi, static_cast<uint32_t>(nearestToCentre.segment), ids);
+        TileChain tc;
         tc.chain = chain;
         tc.start = frame.start;
         tc.direction = frame.direction;
@@ -124,12 +153,11 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, std::span<const uint
             keep(ids);
             tc.end.fill(kept.size());
         } else {
-            PointQuarters& quarters = scratch.quarters;
             quarters.split();
             for (int q = 0; q < 4; ++q) {
                 tc.begin[q] = kept.size();
                 if (quarters.used(q)) {
-                    auto& narrowed = scratch.quarterSegments;
+                    auto& narrowed = buffers.quarterSegments;
                     narrowed.clear();
                     chainTrees_.narrow(ids, quarters.lo(q), quarters.hi(q), farthest, narrowed);
                     keep(narrowed);
@@ -137,7 +165,7 @@ void GrowthField::prepareTileChains(GrowthScratch& scratch, std::span<const uint
                 tc.end[q] = kept.size();
             }
         }
-        chains.push_back(tc);
+        out.chains.push_back(tc);
     }
 }
 

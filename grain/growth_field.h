@@ -16,8 +16,8 @@
 /// point never depends on the batch it came in: candidate lists are supersets, sorted by id,
 /// filtered per point, so results are bitwise identical for any tiling and thread count.
 
-#include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -26,9 +26,8 @@
 #include "grain/grain_params.h"
 #include "grain/growth_terms.h"
 #include "grain/latewood_timing.h"
-#include "grain/point_quarters.h"
+#include "grain/point_box.h"
 #include "grain/radial_growth.h"
-#include "grain/segment_batch.h"
 #include "skeleton/skeleton_index.h"
 
 namespace nenrin {
@@ -57,40 +56,31 @@ struct GrowthSample {
     Vec3 knotAxisDirection;  ///< the chain's tangent there, pointing out of the trunk
 };
 
-/// Reusable per-thread buffers for batch evaluation.
+struct GrowthBuffers;  // grain/field_passes.h
+
+/// Reusable per-thread buffers for batch evaluation: make one per thread and pass it to each
+/// evaluateBatch call. What it holds is the field's own business (GrowthBuffers,
+/// grain/field_passes.h), made on first use; a copy starts empty.
 struct GrowthScratch {
-    std::vector<Vec3> points;
-    std::vector<uint32_t> trunkCandidates;
-    std::vector<uint32_t> chunkTrunk;  ///< trunk candidates kept for the current chunk
-    /// A branch chain near the current tile, with the segments that may matter for it.
-    struct TileChain {
-        uint32_t chain;
-        /// Per quarter of the chunk: the range in keptSegments that may matter for its points.
-        std::array<uint32_t, 4> begin, end;
-        Vec3 start, direction;  ///< Q and the normal of plane F (eq. 5)
-        double gamma;           ///< largest gamma of the kept segments and their neighbours
-        double birthBound;      ///< smallest node birth time they can use
-        Vec3 lower, upper;      ///< bounding box of the kept segments
-    };
-    std::vector<TileChain> tileChains;
-    SegmentBatch keptSegments;
-    std::vector<uint32_t> candidateChains;  ///< chains with a segment near the batch, sorted
-    std::vector<uint32_t> groupChains;      ///< those that may matter for a group of chunks
-    std::vector<uint32_t> chainSegments;    ///< one chain's segments near the tile
-    std::vector<uint32_t> quarterSegments;  ///< those that may matter for one quarter
-    PointQuarters quarters;  ///< of the current chunk, split when a chain first needs it
-    std::vector<double> centreDistances;
-    struct ChainTerm {
-        uint32_t chain;
-        double time, sinAlpha, distance;
-        double dead;    ///< 0 living, 1 dead when the trunk reached P
-        double weight;  ///< the reach cut-off weight w_c
-        uint32_t segment;
-        Vec3 axisPoint, axisDirection;
-        double Ta, Tb;  ///< the nearest segment's own (unblended) elongation and thickening
-    };
-    std::vector<ChainTerm> terms;
+    GrowthScratch();
+    ~GrowthScratch();
+    GrowthScratch(const GrowthScratch&);
+    GrowthScratch& operator=(const GrowthScratch&);
+    GrowthScratch(GrowthScratch&&) noexcept;
+    GrowthScratch& operator=(GrowthScratch&&) noexcept;
+
+private:
+    friend class GrowthField;
+    GrowthBuffers& buffers();
+    std::unique_ptr<GrowthBuffers> buffers_;
 };
+
+// What the passes of evaluateBatch hand each other (grain/field_passes.h).
+struct TrunkBuffers;
+struct CullBuffers;
+struct TileChains;
+struct BranchTerm;
+class PointQuarters;
 
 class GrowthField {
 public:
@@ -127,33 +117,53 @@ public:
     PathTime chainPathTime(uint32_t segment, const Vec3& p) const;
 
 private:
+    // One path (path_time.cpp).
     PathTime segmentPathTime(uint32_t segment, const Vec3& p, double t) const;
     /// Radius (m) on the ray from the segment's axis through P (`path` = segmentPathTime at P)
     /// at which its path time, before dieback, is `time`: path times scale with distance
     /// along such a ray through the radial growth and the age warp only, both invertible.
     double radiusAtTime(uint32_t segment, const PathTime& path, double time) const;
-    /// Fills the sample's knot geometry from the branch path with the largest share.
-    void describeKnot(const GrowthScratch::ChainTerm& term, const Vec3& point, double trunkTime,
-                      GrowthSample& sample) const;
+
+    // The passes of evaluateBatch after the sway, in order; each hands the next its answer.
+    /// The trunk pass (trunk_pass.cpp): every point's trunk path T1 into `out` (the rest of
+    /// each sample reset); returns the largest T1. `batch`: the points' bounding box.
+    double evaluateTrunk(std::span<const Vec3> points, const PointBox& batch,
+                         std::span<GrowthSample> out, TrunkBuffers& buffers) const;
+    // The chain culls (chain_culls.cpp): which branch chains can matter for a box of points.
     double branchSearchRadius(double trunkTime) const;
-    /// True if every point of the box projects strictly inside the segment's slab and lies
-    /// past the previous segment's end and before the next one's start (so the neighbours'
-    /// nearest points are the shared joints, and eq. 4 needs no blend).
-    bool insideSlabOnly(uint32_t segment, const Vec3& lo, const Vec3& hi) const;
-    void evaluateBranches(std::span<const Vec3> points, std::span<GrowthSample> out,
-                          GrowthScratch& scratch) const;
     /// Tests 1-3 of prepareTileChains for one chain: false if it cannot matter for any point
-    /// of the ball (centre, radius) around the box [lo, hi], given the largest trunk time
-    /// there; else the reach time of the ball and the chain's segment nearest to its centre.
+    /// of the ball (centre, radius) around the box, given the largest trunk time there; else
+    /// the reach time of the ball and the chain's segment nearest to its centre.
     struct ChainReach {
         double reachTime;
         ChainTrees::Nearest nearest;
     };
-    bool chainMayMatter(uint32_t chain, const Vec3& lo, const Vec3& hi, const Vec3& centre,
-                        double radius, double maxTrunkTime, ChainReach& out) const;
-    void prepareTileChains(GrowthScratch& scratch, std::span<const uint32_t> candidates,
-                           const Vec3& lo, const Vec3& hi, double halfDiagonal,
-                           double maxTrunkTime) const;
+    bool chainMayMatter(uint32_t chain, const PointBox& box, const Vec3& centre, double radius,
+                        double maxTrunkTime, ChainReach& out) const;
+    /// Tests 1-3 over a ball that holds every chunk's of the box (twice its half-diagonal: a
+    /// chunk's centre lies within it, its half-diagonal is at most the box's): what fails here
+    /// fails for every chunk in the box.
+    bool chainMayMatterInside(uint32_t chain, const PointBox& box, double maxTrunkTime) const;
+    /// The branch chains that may matter for the batch (largest trunk time `maxTrunkTime`),
+    /// into `chains`, sorted.
+    void nearbyChains(const PointBox& batch, double maxTrunkTime,
+                      std::vector<uint32_t>& chains) const;
+    /// Those of `chains` that may matter for a group of chunks, in `kept`.
+    std::span<const uint32_t> cullChains(std::span<const uint32_t> chains, const PointBox& group,
+                                         double maxTrunkTime, std::vector<uint32_t>& kept) const;
+    /// The chains of `candidates` that may matter for some point of a chunk, with the
+    /// segments each quarter of it must measure (splitting `quarters` when a chain needs it).
+    void prepareTileChains(std::span<const uint32_t> candidates, const PointBox& chunk,
+                           double maxTrunkTime, PointQuarters& quarters, TileChains& out,
+                           CullBuffers& buffers) const;
+    /// The branch pass (branch_pass.cpp) over one chunk: each point's branch paths among
+    /// `chains` and the junction blend (eq. 5) with its trunk path, into `out`.
+    void evaluateBranches(std::span<const Vec3> points, const PointQuarters& quarters,
+                          TileChains& chains, std::span<GrowthSample> out,
+                          std::vector<BranchTerm>& terms) const;
+    /// Fills the sample's knot geometry from the branch path with the largest share.
+    void describeKnot(const BranchTerm& term, const Vec3& point, double trunkTime,
+                      GrowthSample& sample) const;
 
     const SkeletonIndex* index_;
     GrainParams params_;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "grain/grain_params.h"
@@ -12,15 +13,23 @@
 
 namespace nenrin {
 
-/// Eq. 2: time for the growth tip to travel path length Da at elongation speed Sa.
-/// (Skeletons carry node birth times, which reduce to this for a constant Sa.)
-inline double elongationTime(double pathLength, double elongationSpeed) {
-    return pathLength / elongationSpeed;
+/// Eq. 2: Ta = Da / Sa, the time for the growth tip to travel path length Da at elongation
+/// speed Sa. Skeletons carry it as node birth times (the path length to the node over Sa, or
+/// any elongation history a growth model gives); along a segment whose start was reached at
+/// `startBirth` and end `birthDelta` later, the tip passes fraction t of it at
+/// startBirth + t birthDelta, which is Da / Sa for a constant Sa.
+inline double elongationTime(double startBirth, double birthDelta, double t) {
+    return startBirth + birthDelta * t;
 }
 
-/// Eq. 3 / 3': time for the bark to thicken out over distance Db at radial speed S
-/// (S = Sb on the trunk path, gamma Sb on a branch path).
-inline double thickeningTime(double distance, double radialSpeed) { return distance / radialSpeed; }
+/// Eq. 3 / 3': Tb = Db / S, the time for the bark to thicken out over distance Db at radial
+/// speed S = Sb gamma f (gamma = 1 on the trunk path; f the product of the speed factors of
+/// taper, eq. 9, and direction, eq. 7). Computed as the field keeps it: Db times the segment's
+/// 1 / (Sb gamma), then over f, where f = 1 spares the division.
+inline double thickeningTime(double distance, double inverseSpeed, double speedFactor) {
+    const double years = distance * inverseSpeed;
+    return speedFactor != 1 ? years / speedFactor : years;
+}
 
 /// Eq. 7: radial speed factor 1 - eps cos(beta); beta is the angle between the sun-ray vector
 /// (pointing away from the sun) and the outward bark normal. The sun side (normal facing the
@@ -50,11 +59,20 @@ inline double dieback(double t, double deathTime, double eps) {
     return t > deathTime ? t * std::pow(t / deathTime, eps) : t;
 }
 
-/// Eq. 4 for a pair: T = (T1 M1 + T2 M2) / (M1 + M2), where M1 and M2 are the distances to the
-/// planes through the joint perpendicular to the two segments (region D of Fig. 3).
-inline double jointBlend(double t1, double m1, double t2, double m2) {
-    double w = m1 + m2;
-    return w > 0 ? (t1 * m1 + t2 * m2) / w : 0.5 * (t1 + t2);
+/// Eq. 4, region D of Fig. 3: T = (T1 M1 + T2 M2) / (M1 + M2), where M1 and M2 are the
+/// distances to the planes through the joint perpendicular to the two segments; over a chain's
+/// members around P (two, or three where P lies in both neighbours' slabs),
+/// T = sum M_i T_i / sum M_i, summed in chain order (the same from either end). With two members
+/// it is the pair's formula. Where every M_i is 0 (P on every joint plane at once) there is no
+/// blend: `unweighted` is returned (the nearest member's own time).
+inline double jointBlend(std::span<const double> times, std::span<const double> planeDistances,
+                         double unweighted) {
+    double weighted = 0, weights = 0;
+    for (size_t i = 0; i < times.size(); ++i) {
+        weighted += planeDistances[i] * times[i];
+        weights += planeDistances[i];
+    }
+    return weights > 0 ? weighted / weights : unweighted;
 }
 
 /// Eq. 5's smooth minimum T = (sum_i w_i E_i^-p)^(-1/p) over path times E_i (T1 for the
@@ -70,18 +88,43 @@ inline double junctionCombine(double m, double sum, double p) {
     return m * (p == 2.0 ? 1.0 / std::sqrt(sum) : std::pow(sum, -1.0 / p));
 }
 
+/// Eq. 5 over the trunk path and any number of branch paths c, each with a weight w_c:
+///   T = (T1^-p + sum_c w_c E_c^-p)^(-1/p),  E_c = T_c / sin(alpha_c),
+/// relative to m = min(T1, min_c E_c) > 0. Make it with m and T1, add() the branch paths in a
+/// fixed order (the sum's order is part of the answer), then read time().
+class JunctionSum {
+public:
+    JunctionSum(double m, double trunkTime, double p)
+        : m_(m), p_(p), trunk_(junctionTerm(m, trunkTime, p)), sum_(trunk_) {}
+    /// Adds a branch path of effective time E_c with weight w_c; returns its term
+    /// w_c (m / E_c)^p.
+    double add(double effectiveTime, double weight) {
+        const double term = weight * junctionTerm(m_, effectiveTime, p_);
+        sum_ += term;
+        return term;
+    }
+    double time() const { return junctionCombine(m_, sum_, p_); }
+    double sum() const { return sum_; }  ///< of every term, the trunk's (m / T1)^p included
+    /// The branch paths' share of the sum (GrowthSample::knot).
+    double branchShare() const { return (sum_ - trunk_) / sum_; }
+
+private:
+    double m_, p_, trunk_, sum_;
+};
+
 /// Eq. 5 (our reconstruction, models.md 1.2) for one trunk and one branch path:
 ///   T = T1                                   if sin(alpha) <= 0 (behind the branch's plane F)
 ///   T = (T1^-p + (T2 / sin alpha)^-p)^(-1/p) otherwise.
 /// p = 2 is T1 T2 / sqrt(T2^2 + (T1 sin alpha)^2), the paper's form; p -> infinity the
-/// first-arrival minimum. GrowthField sums the same terms over all branch paths at once.
+/// first-arrival minimum. GrowthField takes the same JunctionSum over all branch paths at once.
 inline double junctionBlend(double trunkTime, double branchTime, double sinAlpha, double p) {
     if (sinAlpha <= 0) return trunkTime;
     double branchEffective = branchTime / sinAlpha;
     double m = std::min(trunkTime, branchEffective);
     if (m <= 0) return 0;
-    double sum = junctionTerm(m, trunkTime, p) + junctionTerm(m, branchEffective, p);
-    return junctionCombine(m, sum, p);
+    JunctionSum sum(m, trunkTime, p);
+    sum.add(branchEffective, 1.0);
+    return sum.time();
 }
 
 /// Linear interpolation from a (t = 0) to b (t = 1).

@@ -31,10 +31,6 @@ public:
         ids_.push_back(id);
     }
     uint32_t size() const { return static_cast<uint32_t>(ids_.size()); }
-    void truncate(uint32_t n) {
-        for (auto* v : {&ax_, &ay_, &az_, &dx_, &dy_, &dz_, &inv_}) v->resize(n);
-        ids_.resize(n);
-    }
     uint32_t id(uint32_t i) const { return ids_[i]; }
 
     /// What one vectorised pass over a range found.

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "grain/field_segment.h"
+#include "grain/growth_terms.h"
 #include "skeleton/skeleton_file.h"
 #include "skeleton/synthetic_tree.h"
 #include "tests/test_trees.h"
@@ -168,6 +170,85 @@ TEST(GrowthField, ContinuousAcrossTheJunctionPlaneOfEquation5) {
     EXPECT_LT(inKnot.T, inKnot.trunkTime);
 }
 
+// The field against the named terms of growth_terms.h, where they must agree: eq. 1-4 written
+// out for the members of a bent trunk (regions A, C and D of Fig. 3).
+TEST(GrowthField, TrunkPathIsEquations1To4) {
+    Skeleton sk;
+    const double a = 30 * std::numbers::pi / 180;
+    const Vec3 q{0, 0, 2}, up{std::sin(a), 0, std::cos(a)};
+    sk.addTrunk({{0, 0, 0}, q, q + up * 3}, {0, 2 / kSa, 5 / kSa});
+    SkeletonIndex index(sk);
+    GrowthField f(index, plainGrain());
+    // Eq. 1-3 through each member: Ta = Da / Sa along the path, Tb = Db / Sb.
+    struct Member {
+        double time, planeDistance;  // M: distance to the plane through q perpendicular to it
+    };
+    auto lower = [&](const Vec3& p) {
+        const Vec3 n{0, 0, p.z};
+        return Member{p.z / kSa + length(p - n) / kSb, 2 - p.z};
+    };
+    auto upper = [&](const Vec3& p) {
+        const double u = dot(p - q, up);
+        return Member{(2 + u) / kSa + length(p - (q + up * u)) / kSb, u};
+    };
+    // Region D, on the concave side of the bend: in both slabs, eq. 4.
+    int blended = 0;
+    for (const Vec3& p : {Vec3{0.06, 0.01, 1.99}, Vec3{0.1, -0.02, 1.97}, Vec3{0.03, 0, 1.995}}) {
+        const Member m1 = lower(p), m2 = upper(p);
+        ASSERT_GT(m1.planeDistance, 0);
+        ASSERT_GT(m2.planeDistance, 0);
+        const double eq4 = (m1.time * m1.planeDistance + m2.time * m2.planeDistance) /
+                           (m1.planeDistance + m2.planeDistance);
+        EXPECT_NEAR(f.evaluate(p).trunkTime, eq4, 1e-9 * eq4) << p.x;
+        blended += std::abs(eq4 - m1.time) > 1e-3 && std::abs(eq4 - m2.time) > 1e-3;
+    }
+    EXPECT_EQ(blended, 3);  // the blend is neither member's own time there
+    // Region A (one slab): the member's own time; region C (convex side, beyond both slabs):
+    // the path through the joint q.
+    const Vec3 inA{0.04, 0.02, 1.2}, inC{-0.05, 0.01, 2.01};
+    EXPECT_NEAR(f.evaluate(inA).trunkTime, lower(inA).time, 1e-9 * lower(inA).time);
+    EXPECT_NEAR(f.evaluate(inC).trunkTime, 2 / kSa + length(inC - q) / kSb, 1e-9 * 10);
+}
+
+// Eq. 5 at a junction of one branch with weight 1: the field's smooth minimum over all branch
+// paths is junctionBlend there, bit for bit; and the branch path is eq. 2-3' with gamma.
+TEST(GrowthField, OneBranchJunctionIsEquation5) {
+    const Vec3 dir = normalize(Vec3{1, 0, 0.7});
+    const double gamma = 0.5;
+    Skeleton sk = test::trunkWithBranch(2, dir, 1.5, {gamma, kNeverDies, 0}, 10, kSa);
+    SkeletonIndex index(sk);
+    const GrainParams grain = plainGrain();
+    GrowthField f(index, grain);
+    const std::vector<FieldSegment> segments = flattenSegments(sk);
+    ASSERT_EQ(segments.size(), 3u);
+    const FieldSegment& branch = segments[2];  // the branch's only segment, Q = (0, 0, 2)
+    ASSERT_TRUE(branch.branch);
+    int knotted = 0;
+    for (double along : {0.02, 0.05, 0.1})
+        for (double off : {0.002, 0.006, 0.015}) {
+            const Vec3 p = branch.a + dir * along + Vec3{0, off, 0};
+            const GrowthSample g = f.evaluate(p);
+            EXPECT_NEAR(g.trunkTime, p.z / kSa + std::hypot(p.x, p.y) / kSb, 1e-9 * g.trunkTime);
+            const GrowthField::PathTime path = f.chainPathTime(2, p);
+            const double t2 = (2 + along) / kSa + off / (gamma * kSb);
+            EXPECT_NEAR(path.T, t2, 1e-9 * t2);
+            const Vec3 v = p - branch.a;
+            const double sinAlpha = dot(v, branch.axis) / length(v);
+            ASSERT_EQ(junctionReachWeight(path.T / sinAlpha, g.trunkTime, grain.junction.reach), 1);
+            EXPECT_EQ(g.T, junctionBlend(g.trunkTime, path.T, sinAlpha, grain.junction.p))
+                << along << " " << off;
+            // p = 2: the paper's form T1 T2 / sqrt(T2^2 + (T1 sin alpha)^2).
+            const double t1 = g.trunkTime;
+            EXPECT_NEAR(g.T, t1 * path.T / std::hypot(path.T, t1 * sinAlpha), 1e-9 * t1);
+            knotted += g.knot > 0.5;
+        }
+    EXPECT_GT(knotted, 5);
+    // Behind plane F the trunk path alone.
+    const GrowthSample behind = f.evaluate({-0.03, 0.01, 1.97});
+    EXPECT_EQ(behind.T, behind.trunkTime);
+    EXPECT_EQ(behind.knot, 0);
+}
+
 TEST(GrowthField, BatchAndSingleEvaluationAreBitwiseEqual) {
     // Batching must never change an answer: one point at a time, a 32 x 32 batch listed row by
     // row (chunks of two long rows), and the same batch listed as 8 x 8 chunks give the same
@@ -213,6 +294,29 @@ TEST(GrowthField, BatchAndSingleEvaluationAreBitwiseEqual) {
         }
         EXPECT_GT(knotted, 10) << perBranch;  // the batches do meet branches
     }
+}
+
+TEST(GrowthField, AScratchCopiedOrMovedStillServes) {
+    Vec3 dir = normalize(Vec3{1, 0, 0.7});
+    Skeleton sk = test::trunkWithBranch(2, dir, 1.5, {0.5, kNeverDies, 0}, 10, kSa);
+    SkeletonIndex index(sk);
+    GrowthField f(index, plainGrain());
+    std::vector<Vec3> points;
+    for (int i = 0; i < 100; ++i) points.push_back(Vec3{0, 0, 2} + dir * (0.001 * i));
+    std::vector<GrowthSample> a(points.size()), b(points.size()), c(points.size());
+    GrowthScratch used;
+    f.evaluateBatch(points, a, used);
+    GrowthScratch copy(used), moved(std::move(used));
+    f.evaluateBatch(points, b, copy);
+    f.evaluateBatch(points, c, moved);
+    used = copy;  // a moved-from scratch may be assigned again, and serves again
+    f.evaluateBatch(points, c, used);
+    for (size_t i = 0; i < points.size(); ++i) {
+        ASSERT_EQ(a[i].T, b[i].T);
+        ASSERT_EQ(a[i].T, c[i].T);
+        ASSERT_EQ(a[i].knot, c[i].knot);
+    }
+    EXPECT_GT(a[50].knot, 0.5);
 }
 
 TEST(GrowthField, BundledConiferHasLiveAndDeadKnots) {

@@ -3,13 +3,30 @@
 #include <gtest/gtest.h>
 
 #include <numbers>
+#include <utility>
 
 namespace nenrin {
 namespace {
 
-TEST(GrowthTerms, ElongationAndThickeningTimes) {
-    EXPECT_DOUBLE_EQ(elongationTime(3.0, 0.5), 6.0);     // eq. 2
-    EXPECT_DOUBLE_EQ(thickeningTime(0.02, 0.004), 5.0);  // eq. 3
+TEST(GrowthTerms, ElongationTimeIsEquation2FromNodeBirths) {
+    // Constant Sa: a segment from 3 m to 4 m along the path has node births 3 / Sa and 4 / Sa,
+    // and fraction t of it is reached at Da / Sa = (3 + t) / Sa.
+    const double sa = 0.5;
+    for (double t : {0.0, 0.25, 0.6, 1.0})
+        EXPECT_NEAR(elongationTime(3 / sa, 1 / sa, t), (3 + t) / sa, 1e-14) << t;
+    EXPECT_EQ(elongationTime(6, 2, 0.25), 6.5);
+}
+
+TEST(GrowthTerms, ThickeningTimeIsEquation3) {
+    // Db / S with S = Sb gamma f, from the 1 / (Sb gamma) the field keeps per segment.
+    EXPECT_DOUBLE_EQ(thickeningTime(0.02, 1 / 0.004, 1), 5.0);
+    const double sb = 0.004, gamma = 0.7;
+    for (double f : {1.0, 1.3, 0.85})
+        for (double db : {0.0, 0.02, 0.137}) {
+            const double paper = db / (sb * gamma * f);
+            EXPECT_NEAR(thickeningTime(db, 1 / (sb * gamma), f), paper, 1e-14 * (1 + paper))
+                << db << " " << f;
+        }
 }
 
 TEST(GrowthTerms, DirectionFactorFavoursTheSunSide) {
@@ -28,10 +45,34 @@ TEST(GrowthTerms, AgeWarpTaperDieback) {
     EXPECT_DOUBLE_EQ(dieback(16.0, 8.0, 2.0), 16.0 * 4.0);  // dead: T (T/Tlim)^eps
 }
 
-TEST(GrowthTerms, JointBlendWeightsByPlaneDistances) {
-    EXPECT_DOUBLE_EQ(jointBlend(10, 1, 20, 0), 10);  // on plane b: all E1
-    EXPECT_DOUBLE_EQ(jointBlend(10, 0, 20, 1), 20);  // on plane a: all E2
-    EXPECT_DOUBLE_EQ(jointBlend(10, 1, 20, 3), 17.5);
+/// Eq. 4 as the paper writes it for a pair: (T1 M1 + T2 M2) / (M1 + M2).
+double pairBlend(double t1, double m1, double t2, double m2) {
+    return (t1 * m1 + t2 * m2) / (m1 + m2);
+}
+
+double jointBlendOfPair(double t1, double m1, double t2, double m2) {
+    const double times[] = {t1, t2}, distances[] = {m1, m2};
+    return jointBlend(times, distances, -1);
+}
+
+TEST(GrowthTerms, JointBlendIsEquation4OverAChainsMembers) {
+    EXPECT_EQ(jointBlendOfPair(10, 1, 20, 0), 10);  // on plane b: all T1
+    EXPECT_EQ(jointBlendOfPair(10, 0, 20, 1), 20);  // on plane a: all T2
+    EXPECT_EQ(jointBlendOfPair(10, 1, 20, 3), 17.5);
+    // Two members: the pair's formula.
+    for (int i = 1; i <= 50; ++i) {
+        const double t1 = 3 + 0.37 * i, t2 = 40 - 0.61 * i, m1 = 0.013 * i, m2 = 0.9 / i;
+        EXPECT_NEAR(jointBlendOfPair(t1, m1, t2, m2), pairBlend(t1, m1, t2, m2), 1e-13 * 40) << i;
+    }
+    // Three (P in both neighbours' slabs): the weighted mean, and the pair's formula where
+    // an outer member's plane distance is 0.
+    const double times[] = {10, 14, 20};
+    const double m[] = {0.3, 0.2, 0.5}, noFirst[] = {0, 0.2, 0.5};
+    EXPECT_NEAR(jointBlend(times, m, -1), (10 * 0.3 + 14 * 0.2 + 20 * 0.5) / 1.0, 1e-13);
+    EXPECT_NEAR(jointBlend(times, noFirst, -1), pairBlend(14, 0.2, 20, 0.5), 1e-13);
+    // No weight at all (P on every joint plane at once): the time given for that case.
+    const double none[] = {0, 0, 0};
+    EXPECT_EQ(jointBlend(times, none, 14.5), 14.5);
 }
 
 TEST(GrowthTerms, JunctionBlendIsTheReconstructedEquation5) {
@@ -45,6 +86,42 @@ TEST(GrowthTerms, JunctionBlendIsTheReconstructedEquation5) {
     EXPECT_NEAR(junctionBlend(t1, t2, s, 64), std::min(t1, t2 / s), 0.1);
     // Never above either path.
     EXPECT_LE(junctionBlend(t1, t2, s, 2), std::min(t1, t2 / s));
+}
+
+TEST(GrowthTerms, JunctionSumIsEquation5OverManyBranchPaths) {
+    const double t1 = 10;
+    // One branch path of weight 1 is junctionBlend, bit for bit.
+    for (double t2 : {3.0, 6.0, 14.0})
+        for (double s : {0.3, 0.8, 1.0})
+            for (double p : {2.0, 5.0}) {
+                const double e = t2 / s;
+                JunctionSum sum(std::min(t1, e), t1, p);
+                sum.add(e, 1);
+                EXPECT_EQ(sum.time(), junctionBlend(t1, t2, s, p)) << t2 << " " << s << " " << p;
+            }
+    // Several, weighted: T = (T1^-p + sum_c w_c E_c^-p)^(-1/p) written out.
+    const std::pair<double, double> paths[] = {{7, 1}, {12, 0.5}, {30, 0.2}};
+    for (double p : {2.0, 3.0, 8.0}) {
+        double m = t1;
+        for (auto [e, w] : paths) m = std::min(m, e);
+        JunctionSum sum(m, t1, p);
+        double direct = std::pow(t1, -p), branches = 0;
+        for (auto [e, w] : paths) {
+            EXPECT_NEAR(sum.add(e, w), w * std::pow(m / e, p), 1e-15) << p;
+            branches += w * std::pow(e, -p);
+        }
+        direct += branches;
+        EXPECT_NEAR(sum.time(), std::pow(direct, -1 / p), 1e-12 * t1) << p;
+        EXPECT_NEAR(sum.branchShare(), branches / direct, 1e-12) << p;
+        EXPECT_NEAR(sum.sum(), direct * std::pow(m, p), 1e-12) << p;
+    }
+    // A path of weight 0 changes nothing.
+    JunctionSum a(7, t1, 2), b(7, t1, 2);
+    a.add(7, 1);
+    b.add(7, 1);
+    EXPECT_EQ(b.add(9, 0), 0);
+    EXPECT_EQ(a.time(), b.time());
+    EXPECT_EQ(a.branchShare(), b.branchShare());
 }
 
 TEST(GrowthTerms, ReachWeightFadesToZero) {

@@ -1,0 +1,86 @@
+#pragma once
+/// What the growth field's passes hand each other (GrowthField::evaluateBatch: sway, trunk,
+/// chain culls, branches), and the buffers they reuse from batch to batch, which a
+/// GrowthScratch holds. Internal to grain/.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "grain/field_bounds.h"
+#include "grain/field_segment.h"
+#include "grain/point_quarters.h"
+#include "grain/segment_batch.h"
+#include "util/vec3.h"
+
+namespace nenrin {
+
+/// Points per chunk: the unit of candidate pruning inside a batch (an 8 x 8 tile).
+inline constexpr size_t kChunk = 64;
+
+/// The nearest segment found so far. Candidates are visited in id order and only a strictly
+/// smaller distance replaces it, so ties go to the smaller id, like the indexes.
+struct Best {
+    int32_t segment = kNone;
+    double distance2 = kInf;
+};
+
+/// A branch chain near a chunk, with the segments that may matter for it.
+struct TileChain {
+    uint32_t chain;
+    /// Per quarter of the chunk: the range in TileChains::segments that may matter for its
+    /// points.
+    std::array<uint32_t, 4> begin, end;
+    Vec3 start, direction;  ///< Q and the normal of plane F (eq. 5)
+    double gamma;           ///< largest gamma of the kept segments and their neighbours
+    double birthBound;      ///< smallest node birth time they can use
+    Vec3 lower, upper;      ///< bounding box of the kept segments
+};
+
+/// The chain culls' answer for one chunk (GrowthField::prepareTileChains), the branch pass's
+/// input (GrowthField::evaluateBranches).
+struct TileChains {
+    std::vector<TileChain> chains;
+    /// The kept segments of all of them, laid out for the vectorised nearest-segment pass
+    /// (which measures into a buffer of its own: the branch pass takes them non-const).
+    SegmentBatch segments;
+};
+
+/// A branch path's term in one point's junction blend (eq. 5).
+struct BranchTerm {
+    uint32_t chain;
+    double time, sinAlpha, distance;
+    double dead;    ///< 0 living, 1 dead when the trunk reached P
+    double weight;  ///< the reach cut-off weight w_c
+    uint32_t segment;
+    Vec3 axisPoint, axisDirection;
+    double Ta, Tb;  ///< the nearest segment's own (unblended) elongation and thickening
+};
+
+/// The trunk pass's lists.
+struct TrunkBuffers {
+    std::vector<uint32_t> candidates;  ///< trunk segments near the batch, sorted
+    std::vector<uint32_t> kept;        ///< those kept for the current chunk
+    std::vector<double> centreDistances;
+};
+
+/// The chain culls' lists for one chain.
+struct CullBuffers {
+    std::vector<uint32_t> chainSegments;    ///< one chain's segments near the chunk
+    std::vector<uint32_t> quarterSegments;  ///< those that may matter for one quarter
+};
+
+/// GrowthScratch's innards: the buffers of one evaluateBatch call, reused by the next.
+struct GrowthBuffers {
+    std::vector<Vec3> points;  ///< the batch's points, swayed
+    TrunkBuffers trunk;
+    std::vector<uint32_t> candidateChains;  ///< chains that may matter for the batch, sorted
+    std::vector<uint32_t> groupChains;      ///< those that may matter for a group of chunks
+    PointQuarters quarters;                 ///< of the current chunk
+    CullBuffers cull;
+    TileChains tileChains;          ///< of the current chunk
+    std::vector<BranchTerm> terms;  ///< of the current point
+};
+
+}  // namespace nenrin
