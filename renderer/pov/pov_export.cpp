@@ -266,11 +266,11 @@ std::vector<std::string> exportPovScene(const Scene& scene, const std::string& f
     if (!fs::is_directory(folder))
         throw InputError(folder, "-o", "expected an existing folder for the POV-Ray scene");
     const PovOutputSize size = povOutputSize(scene, options);
-    requireOutputSpace(size.bytes,
-                       fmt::format("writing the df3 volumes of {} wood object{} at --volume {}",
-                                   size.volumes, size.volumes == 1 ? "" : "s",
-                                   options.volumeResolution),
-                       folder);
+    requireOutputSpace(
+        size.bytes,
+        fmt::format("writing the df3 volumes of {} wood object{} at --volume {}", size.volumes,
+                    size.volumes == 1 ? "" : "s", options.volumeResolution),
+        folder);
     std::vector<std::string> written;
     std::string pov = povCameraAndLights(scene);
     for (size_t i = 0; i < scene.objects.size(); ++i) {
