@@ -65,6 +65,137 @@ std::optional<DataLine> parseDataLine(std::string_view line) {
     return d;
 }
 
+std::string lineAt(int n) { return fmt::format("line {}", n); }
+
+/// Reads a Tucson file line by line. A series stays open from its first data line until its
+/// end marker, a line that stops before its decade's end or the next series' first line.
+class TucsonReader {
+public:
+    explicit TucsonReader(const std::string& path) { file_.path = path; }
+
+    void readLine(const std::string& line) {
+        ++lineNo_;
+        if (line.find('\0') != std::string::npos)
+            throw InputError(file_.path, lineAt(lineNo_), "holds a NUL byte: expected a text file");
+        if (trim(line).empty()) return;
+        auto d = parseDataLine(line);
+        if (!d) {
+            readHeaderLine(line);
+            return;
+        }
+        if (open_ && d->id != current_.id) closeSeries(lastDataLine_);
+        if (!open_) openSeries(*d);
+        checkLineStart(*d);
+        appendValues(*d);
+        lastDataLine_ = lineNo_;
+        if (raw_.back() == kMarkerThousandths) {
+            closeSeries(lineNo_);
+            return;
+        }
+        // A line that stops before its decade's end closes the series (999 is then the marker).
+        if ((nextYear_ % 10 + 10) % 10 != 0) closeSeries(lineNo_);
+    }
+
+    RingSeriesFile finish() {
+        if (open_) closeSeries(lastDataLine_);
+        if (file_.series.empty())
+            throw InputError(file_.path, "",
+                             "holds no ring-width series: expected Tucson .rwl data lines");
+        return std::move(file_);
+    }
+
+private:
+    /// Lines that are not data are the header while no data line came yet (at most 8 of them).
+    void readHeaderLine(const std::string& line) {
+        if (lastDataLine_ == 0 && file_.header.size() < 8) {
+            file_.header.push_back(trim(line));
+            return;
+        }
+        throw InputError(file_.path, lineAt(lineNo_),
+                         "expected a data line: a series ID (columns 1-8), a year (columns "
+                         "9-12) and up to ten integer widths in 6-character fields");
+    }
+
+    void openSeries(const DataLine& d) {
+        if (ended_.count(d.id))
+            throw InputError(file_.path, lineAt(lineNo_),
+                             fmt::format("series '{}' starts again after its end marker: "
+                                         "expected each series once",
+                                         d.id));
+        current_.id = d.id;
+        current_.firstYear = static_cast<int>(d.year);
+        current_.firstLine = lineNo_;
+        nextYear_ = d.year;
+        open_ = true;
+    }
+
+    /// A line continues its series where the previous one stopped, at a decade year.
+    void checkLineStart(const DataLine& d) const {
+        if (d.year != nextYear_)
+            throw InputError(file_.path, lineAt(lineNo_),
+                             fmt::format("series '{}' jumps from year {} to {}: expected the "
+                                         "line to start at year {}",
+                                         d.id, nextYear_ - 1, d.year, nextYear_));
+        if (d.year != current_.firstYear && d.year % 10 != 0)
+            throw InputError(file_.path, lineAt(lineNo_),
+                             fmt::format("series '{}' continues at year {}: expected a line to "
+                                         "start at a decade year",
+                                         d.id, d.year));
+    }
+
+    void appendValues(const DataLine& d) {
+        for (size_t i = 0; i < d.values.size(); ++i) {
+            long v = d.values[i];
+            bool last = i + 1 == d.values.size();
+            if (v == kMarkerThousandths && !last)
+                throw InputError(
+                    file_.path, lineAt(lineNo_),
+                    fmt::format("series '{}': values after the end marker -9999", d.id));
+            if (v < 0 && v != kMarkerThousandths)
+                throw InputError(file_.path, lineAt(lineNo_),
+                                 fmt::format("series '{}', year {}: width {} is negative: "
+                                             "expected a width >= 0 or an end marker",
+                                             d.id, nextYear_ + static_cast<long>(i), v));
+            raw_.push_back(v);
+        }
+        nextYear_ += static_cast<long>(d.values.size());
+    }
+
+    /// `n` is the line the series ended on (for the messages).
+    void closeSeries(int n) {
+        // The series' last value is its end marker; it sets the unit of the whole series.
+        long marker = raw_.empty() ? 0 : raw_.back();
+        if (marker == kMarkerThousandths)
+            current_.unitMm = 0.001;
+        else if (marker == kMarkerHundredths)
+            current_.unitMm = 0.01;
+        else
+            throw InputError(file_.path, lineAt(n),
+                             fmt::format("series '{}' ends without its end marker: expected 999 "
+                                         "(0.01 mm) or -9999 (0.001 mm) after year {}",
+                                         current_.id, nextYear_ - 1));
+        raw_.pop_back();
+        if (raw_.empty())
+            throw InputError(
+                file_.path, lineAt(n),
+                fmt::format("series '{}' has no widths before its end marker", current_.id));
+        for (long v : raw_) current_.widthsMm.push_back(static_cast<double>(v) * current_.unitMm);
+        ended_.insert(current_.id);
+        file_.series.push_back(std::move(current_));
+        current_ = RingSeries{};
+        raw_.clear();
+        open_ = false;
+    }
+
+    RingSeriesFile file_;
+    std::set<std::string> ended_;  ///< IDs of the series already closed
+    RingSeries current_;
+    std::vector<long> raw_;  ///< the current series' values as written, marker included
+    bool open_ = false;
+    long nextYear_ = 0;  ///< the year the current series' next value is for
+    int lineNo_ = 0, lastDataLine_ = 0;
+};
+
 }  // namespace
 
 const RingSeries& RingSeriesFile::find(const std::string& id) const {
@@ -81,108 +212,11 @@ RingSeriesFile readTucsonRwl(const std::string& path) {
 }
 
 RingSeriesFile parseTucsonRwl(const std::string& text, const std::string& path) {
-    RingSeriesFile file;
-    file.path = path;
-    std::set<std::string> ended;
-    RingSeries current;
-    std::vector<long> raw;  // the current series' values as written, marker included
-    bool open = false;
-    long nextYear = 0;
-    int lineNo = 0, lastDataLine = 0;
-
-    auto where = [&](int n) { return fmt::format("line {}", n); };
-    auto close = [&](int n) {
-        // The series' last value is its end marker; it sets the unit of the whole series.
-        long marker = raw.empty() ? 0 : raw.back();
-        if (marker == kMarkerThousandths)
-            current.unitMm = 0.001;
-        else if (marker == kMarkerHundredths)
-            current.unitMm = 0.01;
-        else
-            throw InputError(path, where(n),
-                             fmt::format("series '{}' ends without its end marker: expected 999 "
-                                         "(0.01 mm) or -9999 (0.001 mm) after year {}",
-                                         current.id, nextYear - 1));
-        raw.pop_back();
-        if (raw.empty())
-            throw InputError(
-                path, where(n),
-                fmt::format("series '{}' has no widths before its end marker", current.id));
-        for (long v : raw) current.widthsMm.push_back(static_cast<double>(v) * current.unitMm);
-        ended.insert(current.id);
-        file.series.push_back(std::move(current));
-        current = RingSeries{};
-        raw.clear();
-        open = false;
-    };
-
+    TucsonReader reader(path);
     std::istringstream lines(text);
     std::string line;
-    while (std::getline(lines, line)) {
-        ++lineNo;
-        if (line.find('\0') != std::string::npos)
-            throw InputError(path, where(lineNo), "holds a NUL byte: expected a text file");
-        if (trim(line).empty()) continue;
-        auto d = parseDataLine(line);
-        if (!d) {
-            if (lastDataLine == 0 && file.header.size() < 8) {
-                file.header.push_back(trim(line));
-                continue;
-            }
-            throw InputError(path, where(lineNo),
-                             "expected a data line: a series ID (columns 1-8), a year (columns "
-                             "9-12) and up to ten integer widths in 6-character fields");
-        }
-        if (open && d->id != current.id) close(lastDataLine);
-        if (!open) {
-            if (ended.count(d->id))
-                throw InputError(path, where(lineNo),
-                                 fmt::format("series '{}' starts again after its end marker: "
-                                             "expected each series once",
-                                             d->id));
-            current.id = d->id;
-            current.firstYear = static_cast<int>(d->year);
-            current.firstLine = lineNo;
-            nextYear = d->year;
-            open = true;
-        }
-        if (d->year != nextYear)
-            throw InputError(path, where(lineNo),
-                             fmt::format("series '{}' jumps from year {} to {}: expected the "
-                                         "line to start at year {}",
-                                         d->id, nextYear - 1, d->year, nextYear));
-        if (d->year != current.firstYear && d->year % 10 != 0)
-            throw InputError(path, where(lineNo),
-                             fmt::format("series '{}' continues at year {}: expected a line to "
-                                         "start at a decade year",
-                                         d->id, d->year));
-        for (size_t i = 0; i < d->values.size(); ++i) {
-            long v = d->values[i];
-            bool last = i + 1 == d->values.size();
-            if (v == kMarkerThousandths && !last)
-                throw InputError(
-                    path, where(lineNo),
-                    fmt::format("series '{}': values after the end marker -9999", d->id));
-            if (v < 0 && v != kMarkerThousandths)
-                throw InputError(path, where(lineNo),
-                                 fmt::format("series '{}', year {}: width {} is negative: "
-                                             "expected a width >= 0 or an end marker",
-                                             d->id, nextYear + static_cast<long>(i), v));
-            raw.push_back(v);
-        }
-        nextYear += static_cast<long>(d->values.size());
-        lastDataLine = lineNo;
-        if (raw.back() == kMarkerThousandths) {
-            close(lineNo);
-            continue;
-        }
-        // A line that stops before its decade's end closes the series (999 is then the marker).
-        if ((nextYear % 10 + 10) % 10 != 0) close(lineNo);
-    }
-    if (open) close(lastDataLine);
-    if (file.series.empty())
-        throw InputError(path, "", "holds no ring-width series: expected Tucson .rwl data lines");
-    return file;
+    while (std::getline(lines, line)) reader.readLine(line);
+    return reader.finish();
 }
 
 std::vector<double> latewoodShares(const RingSeries& e, const RingSeriesFile& latewood) {

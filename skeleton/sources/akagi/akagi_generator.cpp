@@ -217,10 +217,8 @@ double horizontalOffsetFromTrunk(const Skeleton& s, const Vec3& p) {
     return std::hypot(p.x - axis.x, p.y - axis.y);
 }
 
-}  // namespace
-
-AkagiTree generateAkagiTree(const AkagiParams& params, uint64_t seed, double years,
-                            const AkagiGenerateOptions& options) {
+void checkGenerateInputs(const AkagiParams& params, double years,
+                         const AkagiGenerateOptions& options) {
     validateAkagiParams(params, "Akagi parameters");
     if (!(std::isfinite(years) && years > 0))
         throw InputError("Akagi tree", "years",
@@ -232,42 +230,48 @@ AkagiTree generateAkagiTree(const AkagiParams& params, uint64_t seed, double yea
         throw InputError("Akagi tree", "lengthExponent", "expected a number in (0, 2]");
     if (options.maxSegments < 1)
         throw InputError("Akagi tree", "maxSegments", "expected at least 1");
+}
 
-    AkagiTree tree;
-    tree.params = params;
-    tree.years = years;
-    SplitMix rng(hashCombine(seed, 0xa6a91ull));
-    std::vector<Element> el =
-        growTopology(params, options.maxSegments, options.lengthExponent, tree.stats.truncated);
-    placeFirstForks(el, params.branchPoint);
-    placeSegments(el, params, options.angleJitterDeg, rng);
-
-    // Paper 2.4 (8): scale so that the highest point is at Height.
+/// Paper 2.4 (8): scales the tree so that its highest point is at `height`; returns the scale.
+double scaleToHeight(std::vector<Element>& el, double height) {
     double top = 0;
     for (const Element& e : el) top = std::max({top, e.start.z, e.end.z});
-    double scale = top > 0 ? params.height / top : 1;
+    double scale = top > 0 ? height / top : 1;
     for (Element& e : el) {
         e.start = e.start * scale;
         e.end = e.end * scale;
         e.length *= scale;
     }
+    return scale;
+}
 
-    // Birth time from the growth element: log(100 / g) / log(100) runs from 0 at the root to 1
-    // where the growth element reaches the leaf threshold, so every tip ends at `years` and the
-    // wood low and inside the tree is the oldest.
-    auto timeOf = [&](double g) {
+/// Birth time from the growth element: log(100 / g) / log(100) runs from 0 at the root to 1
+/// where the growth element reaches the leaf threshold, so every tip ends at `years` and the
+/// wood low and inside the tree is the oldest.
+struct BirthClock {
+    const std::vector<Element>& el;
+    double years;
+
+    double timeOf(double g) const {
         return years * std::clamp(std::log(kRootGrowthElement / g) / std::log(kRootGrowthElement),
                                   0.0, 1.0);
-    };
-    auto endTime = [&](const Element& e) {
+    }
+    /// When the tip left the element's end: when its dominant child was born.
+    double endTime(const Element& e) const {
         return e.dominant == kNone ? years : timeOf(el[e.dominant].g);
-    };
+    }
+};
 
-    // Chains: from each axis start follow the dominant child. Depth-first pre-order (a chain,
-    // then the branches along it from base to tip, each with its own branches), so a parent
-    // chain comes before its branches and the order is the one a skeleton file nests them in.
-    std::vector<std::vector<int32_t>> chains;
-    std::vector<uint32_t> chainOf(el.size()), indexInChain(el.size());
+struct Chains {
+    std::vector<std::vector<int32_t>> members;    ///< per chain, its elements from the base
+    std::vector<uint32_t> chainOf, indexInChain;  ///< per element
+};
+
+/// Chains: from each axis start follow the dominant child. Depth-first pre-order (a chain,
+/// then the branches along it from base to tip, each with its own branches), so a parent
+/// chain comes before its branches and the order is the one a skeleton file nests them in.
+Chains collectChains(const std::vector<Element>& el) {
+    Chains chains;
     std::vector<int32_t> starts{0};
     while (!starts.empty()) {
         int32_t s = starts.back();
@@ -279,43 +283,55 @@ AkagiTree generateAkagiTree(const AkagiParams& params, uint64_t seed, double yea
             for (int32_t c : el[e].children)
                 if (c != el[e].dominant) branches.push_back(c);
         starts.insert(starts.end(), branches.rbegin(), branches.rend());
-        chains.push_back(std::move(chain));
+        chains.members.push_back(std::move(chain));
     }
+    chains.chainOf.resize(el.size());
+    chains.indexInChain.resize(el.size());
+    for (size_t c = 0; c < chains.members.size(); ++c)
+        for (size_t i = 0; i < chains.members[c].size(); ++i) {
+            chains.chainOf[chains.members[c][i]] = static_cast<uint32_t>(c);
+            chains.indexInChain[chains.members[c][i]] = static_cast<uint32_t>(i);
+        }
+    return chains;
+}
 
-    double trunkSpeed = params.radius / years;
-    for (size_t c = 0; c < chains.size(); ++c) {
-        const std::vector<int32_t>& chain = chains[c];
-        const Element& first = el[chain[0]];
-        double startTime = first.parent == kNone ? 0.0 : endTime(el[first.parent]);
-        std::vector<Vec3> points{first.start};
-        std::vector<double> times{startTime};
-        std::vector<double> radii{std::sqrt(first.area / std::numbers::pi)};
-        for (size_t i = 0; i < chain.size(); ++i) {
-            const Element& e = el[chain[i]];
-            points.push_back(e.end);
-            times.push_back(std::max(endTime(e), times.back()));
-            int32_t next = e.dominant;
-            radii.push_back(std::sqrt((next == kNone ? e.area : el[next].area) / std::numbers::pi));
-            chainOf[chain[i]] = static_cast<uint32_t>(c);
-            indexInChain[chain[i]] = static_cast<uint32_t>(i);
-        }
-        if (c == 0) {
-            tree.skeleton.addTrunk(points, times, radii);
-        } else {
-            // gamma: the branch's mean radial speed (base radius over its age) relative to the
-            // trunk's (Radius over the tree's age).
-            double age = std::max(years - startTime, 1e-3 * years);
-            ChainProperties props;
-            props.gamma = std::clamp(radii[0] / age / trunkSpeed, 0.02, 1.0);
-            props.diebackExponent = 1;
-            uint32_t parentChain = chainOf[first.parent];
-            uint32_t parentSegment =
-                tree.skeleton.chain(parentChain).firstSegment + indexInChain[first.parent];
-            tree.skeleton.addBranch(parentSegment, points, times, props, radii);
-        }
+/// Adds chain `c` to the skeleton: the trunk for chain 0, else a branch on the segment of its
+/// parent chain it grows from. `trunkSpeed` is the trunk's mean radial speed (m/year).
+void addChain(AkagiTree& tree, const std::vector<Element>& el, const Chains& chains, size_t c,
+              const BirthClock& clock, double trunkSpeed) {
+    const std::vector<int32_t>& chain = chains.members[c];
+    const Element& first = el[chain[0]];
+    double startTime = first.parent == kNone ? 0.0 : clock.endTime(el[first.parent]);
+    std::vector<Vec3> points{first.start};
+    std::vector<double> times{startTime};
+    std::vector<double> radii{std::sqrt(first.area / std::numbers::pi)};
+    for (size_t i = 0; i < chain.size(); ++i) {
+        const Element& e = el[chain[i]];
+        points.push_back(e.end);
+        times.push_back(std::max(clock.endTime(e), times.back()));
+        int32_t next = e.dominant;
+        radii.push_back(std::sqrt((next == kNone ? e.area : el[next].area) / std::numbers::pi));
     }
+    if (c == 0) {
+        tree.skeleton.addTrunk(points, times, radii);
+        return;
+    }
+    // gamma: the branch's mean radial speed (base radius over its age) relative to the
+    // trunk's (Radius over the tree's age).
+    double years = clock.years;
+    double age = std::max(years - startTime, 1e-3 * years);
+    ChainProperties props;
+    props.gamma = std::clamp(radii[0] / age / trunkSpeed, 0.02, 1.0);
+    props.diebackExponent = 1;
+    uint32_t parentChain = chains.chainOf[first.parent];
+    uint32_t parentSegment =
+        tree.skeleton.chain(parentChain).firstSegment + chains.indexInChain[first.parent];
+    tree.skeleton.addBranch(parentSegment, points, times, props, radii);
+}
 
-    // Public segment records and leaves.
+/// The public segment records, and the leaves at the segments' tips.
+void recordSegments(AkagiTree& tree, const std::vector<Element>& el, const Chains& chains,
+                    const BirthClock& clock) {
     tree.segments.resize(el.size());
     for (size_t i = 0; i < el.size(); ++i) {
         const Element& e = el[i];
@@ -326,27 +342,44 @@ AkagiTree generateAkagiTree(const AkagiParams& params, uint64_t seed, double yea
         s.start = e.start;
         s.end = e.end;
         s.radius = std::sqrt(e.area / std::numbers::pi);
-        s.birthTime = e.parent == kNone ? 0.0 : endTime(el[e.parent]);
-        s.chain = chainOf[i];
-        s.skeletonSegment = tree.skeleton.chain(chainOf[i]).firstSegment + indexInChain[i];
+        s.birthTime = e.parent == kNone ? 0.0 : clock.endTime(el[e.parent]);
+        s.chain = chains.chainOf[i];
+        s.skeletonSegment =
+            tree.skeleton.chain(chains.chainOf[i]).firstSegment + chains.indexInChain[i];
         s.children = e.children;
         tree.stats.maxDepth = std::max(tree.stats.maxDepth, e.depth);
-        int perCluster = static_cast<int>(std::lround(params.leafNum));
+        int perCluster = static_cast<int>(std::lround(tree.params.leafNum));
         for (int k = 0; k < e.leafClusters * perCluster; ++k)
-            tree.leaves.push_back({e.end, leafDirection(e, k, perCluster), params.leafSize});
+            tree.leaves.push_back({e.end, leafDirection(e, k, perCluster), tree.params.leafSize});
     }
+}
 
+/// Path length from the root along the main-axis children (child 0) only.
+double mainAxisLength(const std::vector<Element>& el) {
+    double total = 0;
+    for (int32_t e = 0; e != kNone;) {
+        total += el[e].length;
+        int32_t next = kNone;
+        for (int32_t c : el[e].children)
+            if (el[c].childIndex == 0) next = c;
+        e = next;
+    }
+    return total;
+}
+
+/// The tree's summary numbers (what isPlausible checks and the CLI reports).
+void measureTree(AkagiTree& tree, const std::vector<Element>& el, size_t chainCount, double scale) {
     AkagiTreeStats& st = tree.stats;
     st.segmentCount = el.size();
     st.leafCount = tree.leaves.size();
-    st.chainCount = chains.size();
+    st.chainCount = chainCount;
     st.scale = scale;
     double xlo = 0, xhi = 0, ylo = 0, yhi = 0, zlo = 0, zhi = 0, farthest = -1;
     for (const SkeletonNode& n : tree.skeleton.nodes()) {
         double off = horizontalOffsetFromTrunk(tree.skeleton, n.position);
         if (off > farthest) {
             farthest = off;
-            st.widestRelativeHeight = n.position.z / params.height;
+            st.widestRelativeHeight = n.position.z / tree.params.height;
         }
         xlo = std::min(xlo, n.position.x), xhi = std::max(xhi, n.position.x);
         ylo = std::min(ylo, n.position.y), yhi = std::max(yhi, n.position.y);
@@ -361,16 +394,34 @@ AkagiTree generateAkagiTree(const AkagiParams& params, uint64_t seed, double yea
         tree.skeleton.end(tree.skeleton.segment(trunk.firstSegment + trunk.segmentCount - 1));
     st.trunkTopZ = trunkTop.z;
     st.trunkStraightness = st.trunkLength > 0 ? length(trunkTop) / st.trunkLength : 0;
-    for (int32_t e = 0; e != kNone;) {
-        st.mainAxisLength += el[e].length;
-        int32_t next = kNone;
-        for (int32_t c : el[e].children)
-            if (el[c].childIndex == 0) next = c;
-        e = next;
-    }
+    st.mainAxisLength = mainAxisLength(el);
     for (uint32_t c = 1; c < tree.skeleton.chains().size(); ++c)
         st.longestBranchLength = std::max(st.longestBranchLength, chainLength(tree.skeleton, c));
     st.firstForkHeight = el[0].end.z;
+}
+
+}  // namespace
+
+AkagiTree generateAkagiTree(const AkagiParams& params, uint64_t seed, double years,
+                            const AkagiGenerateOptions& options) {
+    checkGenerateInputs(params, years, options);
+    AkagiTree tree;
+    tree.params = params;
+    tree.years = years;
+    SplitMix rng(hashCombine(seed, 0xa6a91ull));
+    std::vector<Element> el =
+        growTopology(params, options.maxSegments, options.lengthExponent, tree.stats.truncated);
+    placeFirstForks(el, params.branchPoint);
+    placeSegments(el, params, options.angleJitterDeg, rng);
+    double scale = scaleToHeight(el, params.height);
+
+    const BirthClock clock{el, years};
+    Chains chains = collectChains(el);
+    double trunkSpeed = params.radius / years;
+    for (size_t c = 0; c < chains.members.size(); ++c)
+        addChain(tree, el, chains, c, clock, trunkSpeed);
+    recordSegments(tree, el, chains, clock);
+    measureTree(tree, el, chains.members.size(), scale);
     return tree;
 }
 

@@ -50,26 +50,18 @@ private:
     const StandTree& t_;
 };
 
-}  // namespace
+/// A first-order lateral and everything on it.
+struct Limb {
+    double born = 0;            ///< age the leader passed its fork
+    double stop = 0;            ///< age it stopped growing: its death, or the felling
+    double death = kNeverDies;  ///< age the crown base passed it
+    double reach = 0;           ///< m: its horizontal reach when it stopped growing
+    double shrink = 0;          ///< scale about its base from the A-system's form to `reach`
+    double longestPath = 0;     ///< m: from its base to its farthest tip, once scaled
+    Vec3 base;
+};
 
-ASystemParams defaultFellForm() {
-    ASystemParams p = aSystemPreset("aono-kunii-b");
-    p.generations = 7;
-    p.trunkForks = 20;
-    return p;
-}
-
-std::vector<double> standTreeRingWidths(const StandTree& tree, double minRingWidth) {
-    std::vector<double> widths;
-    double previous = 0;
-    for (const TreeYear& y : tree.history) {
-        widths.push_back(std::max(y.stemRadius - previous, minRingWidth));
-        previous = y.stemRadius;
-    }
-    return widths;
-}
-
-Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& options) {
+const StandTree& fellableTree(const Stand& stand, uint32_t treeId, const FellOptions& options) {
     if (treeId >= stand.trees.size())
         throw InputError("stand", "tree",
                          fmt::format("tree {} does not exist: the stand has trees 0..{}", treeId,
@@ -81,33 +73,32 @@ Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& o
     if (!(options.minRingWidth > 0) || !std::isfinite(options.minRingWidth))
         throw InputError("fell options", "min_ring_width",
                          fmt::format("is {}: expected a width > 0 (m)", options.minRingWidth));
-    Life life(tree);
-    const int age = life.years();
-    const TreeYear& final = life.at(age);
-    std::vector<ASystemAxis> axes = growASystem(options.form, options.trunkSway);
+    return tree;
+}
 
-    // The trunk's top at the final height (one uniform scale keeps the A-system's angles).
-    double scale = final.height / axes[0].points.back().z;
+/// The trunk's top at the final height (one uniform scale keeps the A-system's angles).
+void scaleToHeight(std::vector<ASystemAxis>& axes, double height) {
+    double scale = height / axes[0].points.back().z;
     for (ASystemAxis& axis : axes)
         for (Vec3& p : axis.points) p = p * scale;
+}
 
-    // Each first-order lateral and everything on it forms one limb: born when the leader
-    // passed its fork, dead when the crown base passed it. Its reach is what the crown had
-    // at the time it stopped growing: a dead limb reaches the crown radius of the year it
-    // died (it was then at the bottom of the cylindrical crown); a living one the final
-    // radius, less towards the top where it is young (a cone over the live crown). The limb
-    // is scaled about its base (a similarity: angles kept, branches stay on their parents)
-    // and grows at one speed along its paths.
+/// Per axis, the first-order axis whose limb it is part of (-1 for the trunk).
+std::vector<int> limbOfAxes(const std::vector<ASystemAxis>& axes) {
     std::vector<int> limbOf(axes.size(), -1);
     for (size_t a = 1; a < axes.size(); ++a)
         limbOf[a] =
             axes[a].order == 1 ? static_cast<int>(a) : limbOf[static_cast<size_t>(axes[a].parent)];
-    struct Limb {
-        double born = 0, stop = 0, death = kNeverDies, reach = 0, shrink = 0, longestPath = 0;
-        Vec3 base;
-    };
+    return limbOf;
+}
+
+/// The limbs (indexed by their first-order axis): timing and reach from the tree's life, and
+/// in `shrink` the horizontal reach the A-system's form gives them.
+std::vector<Limb> timeLimbs(const std::vector<ASystemAxis>& axes, const std::vector<int>& limbOf,
+                            const Life& life) {
+    const int age = life.years();
+    const TreeYear& final = life.at(age);
     std::vector<Limb> limbs(axes.size());
-    std::vector<std::vector<double>> path(axes.size());  // path length from the limb base
     for (size_t a = 1; a < axes.size(); ++a) {
         const ASystemAxis& axis = axes[a];
         if (axis.order == 1) {
@@ -134,6 +125,15 @@ Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& o
     for (size_t a = 1; a < axes.size(); ++a)
         if (axes[a].order == 1)
             limbs[a].shrink = limbs[a].shrink > 0 ? limbs[a].reach / limbs[a].shrink : 1.0;
+    return limbs;
+}
+
+/// Scales every limb about its base to its reach; returns per axis the path length of each
+/// point from the limb's base (and sets the limbs' longest paths).
+std::vector<std::vector<double>> shrinkLimbs(std::vector<ASystemAxis>& axes,
+                                             const std::vector<int>& limbOf,
+                                             std::vector<Limb>& limbs) {
+    std::vector<std::vector<double>> path(axes.size());
     for (size_t a = 1; a < axes.size(); ++a) {
         ASystemAxis& axis = axes[a];
         const Limb& l = limbs[static_cast<size_t>(limbOf[a])];
@@ -147,42 +147,87 @@ Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& o
         Limb& lm = limbs[static_cast<size_t>(limbOf[a])];
         lm.longestPath = std::max(lm.longestPath, path[a].back());
     }
+    return path;
+}
+
+void addTrunk(Skeleton& sk, const ASystemAxis& trunk, const Life& life) {
+    const int age = life.years();
+    std::vector<double> births, radii;
+    for (const Vec3& p : trunk.points) {
+        double born = life.ageAtHeight(p.z);
+        births.push_back(born);
+        // The stem at a node holds the rings laid since the leader passed it.
+        radii.push_back(std::max(life.stemRadius(age) - life.stemRadius(born), 1e-3));
+    }
+    sk.addTrunk(trunk.points, births, radii);
+}
+
+/// Adds axis `a` of limb `l` as a branch: it grows at one speed along its paths (`path`) from
+/// the limb's birth until it stops, and its wood is what the stem laid meanwhile, scaled by
+/// gamma = widthRatio^order. Sets firstSegment[a].
+void addLimbAxis(Skeleton& sk, const std::vector<ASystemAxis>& axes, size_t a, const Limb& l,
+                 const std::vector<double>& path, const Life& life, double widthRatio,
+                 std::vector<uint32_t>& firstSegment) {
+    const ASystemAxis& axis = axes[a];
+    std::vector<double> births, radii;
+    double gamma = std::pow(widthRatio, axis.order);
+    for (double s : path) {
+        double born = l.longestPath > 0 ? l.born + (l.stop - l.born) * s / l.longestPath : l.born;
+        births.push_back(born);
+        radii.push_back(std::max(gamma * (life.stemRadius(l.stop) - life.stemRadius(born)), 5e-4));
+    }
+    ChainProperties props;
+    props.gamma = gamma;
+    props.deathTime = l.death;
+    props.diebackExponent = 1;
+    firstSegment[a] = static_cast<uint32_t>(sk.segments().size());
+    sk.addBranch(
+        firstSegment[static_cast<size_t>(axis.parent)] + static_cast<uint32_t>(axis.parentSegment),
+        axis.points, births, props, radii);
+}
+
+}  // namespace
+
+ASystemParams defaultFellForm() {
+    ASystemParams p = aSystemPreset("aono-kunii-b");
+    p.generations = 7;
+    p.trunkForks = 20;
+    return p;
+}
+
+std::vector<double> standTreeRingWidths(const StandTree& tree, double minRingWidth) {
+    std::vector<double> widths;
+    double previous = 0;
+    for (const TreeYear& y : tree.history) {
+        widths.push_back(std::max(y.stemRadius - previous, minRingWidth));
+        previous = y.stemRadius;
+    }
+    return widths;
+}
+
+Skeleton fellStandTree(const Stand& stand, uint32_t treeId, const FellOptions& options) {
+    const StandTree& tree = fellableTree(stand, treeId, options);
+    Life life(tree);
+    std::vector<ASystemAxis> axes = growASystem(options.form, options.trunkSway);
+    scaleToHeight(axes, life.at(life.years()).height);
+
+    // Each first-order lateral and everything on it forms one limb: born when the leader
+    // passed its fork, dead when the crown base passed it. Its reach is what the crown had
+    // at the time it stopped growing: a dead limb reaches the crown radius of the year it
+    // died (it was then at the bottom of the cylindrical crown); a living one the final
+    // radius, less towards the top where it is young (a cone over the live crown). The limb
+    // is scaled about its base (a similarity: angles kept, branches stay on their parents)
+    // and grows at one speed along its paths.
+    std::vector<int> limbOf = limbOfAxes(axes);
+    std::vector<Limb> limbs = timeLimbs(axes, limbOf, life);
+    std::vector<std::vector<double>> path = shrinkLimbs(axes, limbOf, limbs);
 
     Skeleton sk;
     std::vector<uint32_t> firstSegment(axes.size());
-    const double wr = options.form.widthRatio;
-    for (size_t a = 0; a < axes.size(); ++a) {
-        const ASystemAxis& axis = axes[a];
-        std::vector<double> births, radii;
-        if (a == 0) {
-            for (const Vec3& p : axis.points) {
-                double born = life.ageAtHeight(p.z);
-                births.push_back(born);
-                // The stem at a node holds the rings laid since the leader passed it.
-                radii.push_back(std::max(life.stemRadius(age) - life.stemRadius(born), 1e-3));
-            }
-            firstSegment[a] = 0;
-            sk.addTrunk(axis.points, births, radii);
-            continue;
-        }
-        const Limb& l = limbs[static_cast<size_t>(limbOf[a])];
-        double gamma = std::pow(wr, axis.order);
-        for (double s : path[a]) {
-            double born =
-                l.longestPath > 0 ? l.born + (l.stop - l.born) * s / l.longestPath : l.born;
-            births.push_back(born);
-            radii.push_back(
-                std::max(gamma * (life.stemRadius(l.stop) - life.stemRadius(born)), 5e-4));
-        }
-        ChainProperties props;
-        props.gamma = gamma;
-        props.deathTime = l.death;
-        props.diebackExponent = 1;
-        firstSegment[a] = static_cast<uint32_t>(sk.segments().size());
-        sk.addBranch(firstSegment[static_cast<size_t>(axis.parent)] +
-                         static_cast<uint32_t>(axis.parentSegment),
-                     axis.points, births, props, radii);
-    }
+    addTrunk(sk, axes[0], life);
+    for (size_t a = 1; a < axes.size(); ++a)
+        addLimbAxis(sk, axes, a, limbs[static_cast<size_t>(limbOf[a])], path[a], life,
+                    options.form.widthRatio, firstSegment);
     sk.setRingWidths(standTreeRingWidths(tree, options.minRingWidth));
     return sk;
 }

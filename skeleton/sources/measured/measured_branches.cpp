@@ -196,38 +196,46 @@ BuiltChain layOut(const Vec3& start, double startTime, const std::vector<Interno
     return c;
 }
 
-}  // namespace
+/// The top level: "trunk" and "branches" as they are, and the keys beside them.
+struct TopLevel {
+    nlohmann::json trunk, branches;
+    double unit = 1;          ///< m per unit of the file's lengths and diameters
+    double age = 0;           ///< years; 0 when the file gives the elongation speed instead
+    double speed = 0;         ///< m/year; 0 when the file gives the age instead
+    double defaultGamma = 0;  ///< 0: from the diameters
+};
 
-MeasuredTree parseMeasuredTree(const nlohmann::json& json, const std::string& file) {
+TopLevel readTopLevel(const nlohmann::json& json, const std::string& file) {
     // "trunk" and the internode lists are arrays of arrays, read here by hand; everything else
     // goes through JsonReader (a copy without them, so finish() still catches unknown keys).
     nlohmann::json top = json;
     if (!top.is_object())
         throw InputError(file, "(top level)",
                          fmt::format("expected an object, found {}", jsonTypeName(top)));
-    nlohmann::json trunkJson = top.contains("trunk") ? top["trunk"] : nlohmann::json();
-    nlohmann::json branchesJson =
-        top.contains("branches") ? top["branches"] : nlohmann::json::object();
+    TopLevel t;
+    t.trunk = top.contains("trunk") ? top["trunk"] : nlohmann::json();
+    t.branches = top.contains("branches") ? top["branches"] : nlohmann::json::object();
     top.erase("trunk");
     top.erase("branches");
     JsonReader r(top, file);
     r.string("description", "");
     r.choice("format", "nenrin-measured-branches", {"nenrin-measured-branches"});
-    double unit = r.choice("unit", "m", {"m", "cm"}) == "cm" ? 0.01 : 1.0;
+    t.unit = r.choice("unit", "m", {"m", "cm"}) == "cm" ? 0.01 : 1.0;
     if (r.has("age") == r.has("elongation_speed"))
         throw r.error("",
                       "give exactly one of \"age\" (years at measurement) and "
                       "\"elongation_speed\" (m/year): they define the birth times");
-    double age = r.has("age") ? r.requirePositive("age") : 0;
-    double speed = r.has("elongation_speed") ? r.requirePositive("elongation_speed") : 0;
-    double defaultGamma = r.has("gamma") ? r.requirePositive("gamma") : 0;
+    t.age = r.has("age") ? r.requirePositive("age") : 0;
+    t.speed = r.has("elongation_speed") ? r.requirePositive("elongation_speed") : 0;
+    t.defaultGamma = r.has("gamma") ? r.requirePositive("gamma") : 0;
     r.finish();
+    return t;
+}
 
-    if (trunkJson.is_null())
-        throw InputError(file, "trunk", "missing required trunk internode list");
-    std::vector<Internode> trunk = readInternodes(trunkJson, file, "trunk", unit);
-
-    // Branches, keyed by their numbers.
+/// The branches, keyed by their numbers, sorted parents before children: by order, then by
+/// number.
+std::vector<BranchSpec> readBranches(const nlohmann::json& branchesJson, const std::string& file,
+                                     double unit) {
     if (!branchesJson.is_object())
         throw InputError(
             file, "branches",
@@ -235,13 +243,17 @@ MeasuredTree parseMeasuredTree(const nlohmann::json& json, const std::string& fi
                         "found {}",
                         jsonTypeName(branchesJson)));
     std::vector<BranchSpec> specs = readBranchSpecs(branchesJson, file, unit);
-    // Parents before children: by order, then by number.
     std::sort(specs.begin(), specs.end(), [](const BranchSpec& a, const BranchSpec& b) {
         return a.number.order != b.number.order ? a.number.order < b.number.order
                                                 : a.number.key < b.number.key;
     });
+    return specs;
+}
 
-    // Sa: given, or the one that makes the farthest tip (ignoring bud delays) born at `age`.
+/// The path length from the ground to the farthest tip, checking that every branch's parent
+/// exists and has the node the branch leaves from.
+double farthestTipPath(const std::vector<Internode>& trunk, const std::vector<BranchSpec>& specs,
+                       const std::string& file) {
     std::map<std::string, double> pathTo;  // path length from the ground to a chain's start
     std::map<std::string, const BranchSpec*> byKey;
     double longest = pathLength(trunk);
@@ -271,10 +283,79 @@ MeasuredTree parseMeasuredTree(const nlohmann::json& json, const std::string& fi
         longest = std::max(longest, p + pathLength(s.internodes));
         byKey[s.number.key] = &s;
     }
-    MeasuredTree tree;
-    tree.elongationSpeed = speed > 0 ? speed : longest / age;
-    speed = tree.elongationSpeed;
+    return longest;
+}
 
+/// Branch `s` laid out from its parent's node: it starts when the parent reached the node (or
+/// at its start_time, not before) and dies with its parent at the latest.
+BuiltChain layOutBranch(const BranchSpec& s, const BuiltChain& parent, double speed,
+                        const std::string& file) {
+    size_t node = static_cast<size_t>(s.node);
+    double parentTime = parent.times[node];
+    double start = parentTime;
+    if (s.startTime >= 0) {
+        if (s.startTime < parentTime - 1e-9)
+            throw InputError(file, s.where + ".start_time",
+                             fmt::format("the branch starts at {} years, before its parent "
+                                         "reached node {} ({} years)",
+                                         s.startTime, node, parentTime));
+        start = std::max(s.startTime, parentTime);
+    }
+    BuiltChain c = layOut(parent.points[node], start, s.internodes, speed);
+    if (s.deathTime <= start)
+        throw InputError(file, s.where + ".death_time",
+                         fmt::format("the branch dies at {} years, before it starts ({} years)",
+                                     s.deathTime, start));
+    if (parent.deathTime <= start)
+        throw InputError(file, s.where,
+                         fmt::format("its parent {} is dead at {} years, before the branch "
+                                     "starts ({} years)",
+                                     s.number.parentKey(), parent.deathTime, start));
+    // A branch dies with its parent at the latest.
+    c.deathTime = std::min(s.deathTime, parent.deathTime);
+    return c;
+}
+
+/// Adds branch `s` (laid out in `c`) to the skeleton on its parent's segment at its node.
+/// Gamma where not given comes from the diameters: the branch's mean radial speed (base
+/// radius / its age) over the trunk's (`trunkSpeed`: base radius / age).
+void addBranchChain(MeasuredTree& tree, const BranchSpec& s, BuiltChain& c,
+                    const BuiltChain& parent, double defaultGamma, double trunkSpeed) {
+    size_t node = static_cast<size_t>(s.node);
+    ChainProperties props;
+    props.deathTime = c.deathTime;
+    props.diebackExponent = 1;
+    props.gamma = s.gamma > 0 ? s.gamma : defaultGamma;
+    if (props.gamma == 0) {
+        double end = std::min(tree.age, c.deathTime);
+        double branchAge = end - c.times.front();
+        double g = branchAge > 1e-9 ? (0.5 * s.internodes[0].diameter / branchAge) / trunkSpeed
+                                    : kMaxDerivedGamma;
+        props.gamma = std::clamp(g, kMinDerivedGamma, kMaxDerivedGamma);
+    }
+    uint32_t parentSegment = parent.firstSegment + static_cast<uint32_t>(node == 0 ? 0 : node - 1);
+    c.chain = tree.skeleton.addBranch(parentSegment, c.points, c.times, props, c.radii);
+    c.firstSegment = tree.skeleton.chain(c.chain).firstSegment;
+    tree.chainOfBranch[s.number.key] = c.chain;
+}
+
+}  // namespace
+
+MeasuredTree parseMeasuredTree(const nlohmann::json& json, const std::string& file) {
+    TopLevel top = readTopLevel(json, file);
+    if (top.trunk.is_null())
+        throw InputError(file, "trunk", "missing required trunk internode list");
+    std::vector<Internode> trunk = readInternodes(top.trunk, file, "trunk", top.unit);
+    std::vector<BranchSpec> specs = readBranches(top.branches, file, top.unit);
+
+    // Sa: given, or the one that makes the farthest tip (ignoring bud delays) born at `age`.
+    double longest = farthestTipPath(trunk, specs, file);
+    MeasuredTree tree;
+    tree.elongationSpeed = top.speed > 0 ? top.speed : longest / top.age;
+    double speed = tree.elongationSpeed;
+
+    // First pass: lay out every chain (parents first) and find the newest tip's birth time; only
+    // the trunk goes into the skeleton yet.
     std::map<std::string, BuiltChain> built;
     BuiltChain t = layOut({0, 0, 0}, 0, trunk, speed);
     tree.skeleton.addTrunk(t.points, t.times, t.radii);
@@ -284,66 +365,25 @@ MeasuredTree parseMeasuredTree(const nlohmann::json& json, const std::string& fi
     tree.chainOfBranch["trunk"] = 0;
     double newest = t.times.back();
     for (const auto& s : specs) {
-        const BuiltChain& parent = built.at(s.number.parentKey());
-        size_t node = static_cast<size_t>(s.node);
-        double parentTime = parent.times[node];
-        double start = parentTime;
-        if (s.startTime >= 0) {
-            if (s.startTime < parentTime - 1e-9)
-                throw InputError(file, s.where + ".start_time",
-                                 fmt::format("the branch starts at {} years, before its parent "
-                                             "reached node {} ({} years)",
-                                             s.startTime, node, parentTime));
-            start = std::max(s.startTime, parentTime);
-        }
-        BuiltChain c = layOut(parent.points[node], start, s.internodes, speed);
-        if (s.deathTime <= start)
-            throw InputError(file, s.where + ".death_time",
-                             fmt::format("the branch dies at {} years, before it starts ({} years)",
-                                         s.deathTime, start));
-        if (parent.deathTime <= start)
-            throw InputError(file, s.where,
-                             fmt::format("its parent {} is dead at {} years, before the branch "
-                                         "starts ({} years)",
-                                         s.number.parentKey(), parent.deathTime, start));
-        // A branch dies with its parent at the latest.
-        c.deathTime = std::min(s.deathTime, parent.deathTime);
+        BuiltChain c = layOutBranch(s, built.at(s.number.parentKey()), speed, file);
         newest = std::max(newest, c.times.back());
         built[s.number.key] = std::move(c);
     }
-    if (age > 0 && newest > age + 1e-9) {
+    if (top.age > 0 && newest > top.age + 1e-9) {
         // Only bud delays (start_time) can push a tip past the tree's age.
         throw InputError(file, "age",
                          fmt::format("a branch tip would be born at {:.4g} years, after the tree's "
                                      "age {} (check start_time)",
-                                     newest, age));
+                                     newest, top.age));
     }
-    tree.age = age > 0 ? age : newest;
+    tree.age = top.age > 0 ? top.age : newest;
 
-    // Second pass: add the chains (parents first) with gamma from the diameters where not given:
-    // the branch's mean radial speed (base radius / its age) over the trunk's (base radius / age).
+    // Second pass: add the branch chains, parents first, with gamma from the diameters where
+    // not given.
     double trunkSpeed = 0.5 * trunk[0].diameter / tree.age;
-    for (const auto& s : specs) {
-        BuiltChain& c = built.at(s.number.key);
-        const BuiltChain& parent = built.at(s.number.parentKey());
-        size_t node = static_cast<size_t>(s.node);
-        ChainProperties props;
-        props.deathTime = c.deathTime;
-        props.diebackExponent = 1;
-        props.gamma = s.gamma > 0 ? s.gamma : defaultGamma;
-        if (props.gamma == 0) {
-            double end = std::min(tree.age, c.deathTime);
-            double branchAge = end - c.times.front();
-            double g = branchAge > 1e-9 ? (0.5 * s.internodes[0].diameter / branchAge) / trunkSpeed
-                                        : kMaxDerivedGamma;
-            props.gamma = std::clamp(g, kMinDerivedGamma, kMaxDerivedGamma);
-        }
-        uint32_t parentSegment =
-            parent.firstSegment + static_cast<uint32_t>(node == 0 ? 0 : node - 1);
-        c.chain = tree.skeleton.addBranch(parentSegment, c.points, c.times, props, c.radii);
-        c.firstSegment = tree.skeleton.chain(c.chain).firstSegment;
-        tree.chainOfBranch[s.number.key] = c.chain;
-    }
+    for (const auto& s : specs)
+        addBranchChain(tree, s, built.at(s.number.key), built.at(s.number.parentKey()),
+                       top.defaultGamma, trunkSpeed);
     return tree;
 }
 
