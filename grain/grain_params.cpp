@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "util/json_reader.h"
+#include "util/limits.h"
 
 namespace nenrin {
 
@@ -45,7 +46,8 @@ void readGrowthTerms(JsonReader& root, GrainParams& g) {
     }
     if (auto s = root.object("sway")) {
         g.sway.amplitude = s->inRange("amplitude", g.sway.amplitude, 0, 1);
-        g.sway.wavelength = s->positive("wavelength", g.sway.wavelength);
+        g.sway.wavelength = s->atLeast("wavelength", g.sway.wavelength, kMinSwayWavelength,
+                                       "m: sway bends rings over centimetres or more");
         g.sway.radialJitter = s->inRange("radial_jitter", g.sway.radialJitter, 0, 0.9);
         g.sway.seed = static_cast<uint64_t>(s->integer("seed", 1, 0, 1LL << 53));
         s->finish();
@@ -55,7 +57,11 @@ void readGrowthTerms(JsonReader& root, GrainParams& g) {
 /// The stochastic ring-width model (docs/grain-format.md, "rings").
 void readRingModel(JsonReader& r, RingModelParams& m) {
     m.enabled = r.choice("model", "stochastic", {"stochastic", "constant"}) == "stochastic";
-    m.meanWidth = r.inRange("mean_width", m.meanWidth, 0, 0.1);
+    m.meanWidth = r.zeroOrAtLeast("mean_width", m.meanWidth, kMinRingWidth,
+                                  "m: 1 um; 0 takes the radial speed");
+    if (m.meanWidth > 0.1)
+        throw r.error("mean_width",
+                      fmt::format("expected at most 0.1 (m), found {:g}", m.meanWidth));
     m.juvenileFactor = r.inRange("juvenile_factor", m.juvenileFactor, 1, 10);
     m.juvenileYears = r.inRange("juvenile_years", m.juvenileYears, 0.5, 500);
     m.variation = r.inRange("variation", m.variation, 0, 2);
@@ -156,7 +162,7 @@ void readColour(JsonReader& c, ColourParams& cp) {
         h->finish();
     }
     if (auto m = c.object("micro")) {
-        cp.microCellSize = m->positive("cell_size", cp.microCellSize);
+        cp.microCellSize = m->atLeast("cell_size", cp.microCellSize, kMinCellSize, "m: 1 um");
         cp.microAmplitude = m->inRange("amplitude", cp.microAmplitude, 0, 1);
         cp.microSeed = static_cast<uint64_t>(m->integer("seed", 7, 0, 1LL << 53));
         m->finish();
@@ -179,7 +185,8 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
     root.choice("format", "nenrin-grain", {"nenrin-grain"});
     root.object("reference");  // what a preset was made from (colour measurements, sources):
                                // read by people and tests, not by nenrin
-    g.radialSpeed = root.positive("radial_speed", g.radialSpeed);
+    g.radialSpeed = root.atLeast("radial_speed", g.radialSpeed, kMinRadialSpeed,
+                                 "m/year: 0.01 mm a year, slower than any tree grows");
     g.fellingTime = root.nonNegative("felling_time", g.fellingTime);
     readGrowthTerms(root, g);
     if (auto r = root.object("rings")) readRingModel(*r, g.rings);

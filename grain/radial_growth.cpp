@@ -25,7 +25,8 @@ RadialGrowth::RadialGrowth(const std::vector<double>& widths, double referenceSp
 }
 
 double RadialGrowth::cumulative(double t) const {
-    if (t <= 0) return t * firstWidth_;
+    // NaN goes here too: it has no year to index.
+    if (!(t > 0)) return t * firstWidth_;
     double years = static_cast<double>(widths_.size());
     if (t >= years) return sums_.back() + (t - years) * lastWidth_;
     size_t k = static_cast<size_t>(t);
@@ -33,7 +34,7 @@ double RadialGrowth::cumulative(double t) const {
 }
 
 double RadialGrowth::inverseCumulative(double c) const {
-    if (c <= 0) return c / firstWidth_;
+    if (!(c > 0)) return c / firstWidth_;  // NaN too
     if (c >= sums_.back())
         return static_cast<double>(widths_.size()) + (c - sums_.back()) / lastWidth_;
     // The year whose ring contains c: sums_[k] <= c < sums_[k + 1], so w_k > 0 (a zero-width

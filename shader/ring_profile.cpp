@@ -7,8 +7,18 @@
 namespace nenrin {
 
 namespace {
+
 constexpr int kTableSize = 1024;
+
+/// The table cell of ring phase u (in cells, [0, kTableSize] for a finite T): never an index
+/// outside the table, whatever T was (an infinite or NaN T has no phase: cell 0).
+int tableCell(double& u) {
+    if (!(u >= 0)) u = 0;
+    int i = static_cast<int>(u);
+    return i >= kTableSize ? kTableSize - 1 : i;
 }
+
+}  // namespace
 
 RingProfile::RingProfile(const LateWoodShape& shape)
     : shape_(shape), values_(kTableSize + 1), cumulative_(kTableSize + 1) {
@@ -29,16 +39,14 @@ RingProfile::RingProfile(const LateWoodShape& shape)
 
 double RingProfile::lateWood(double T) const {
     double u = (T - std::floor(T)) * kTableSize;
-    int i = static_cast<int>(u);
-    if (i >= kTableSize) i = kTableSize - 1;
+    int i = tableCell(u);
     return values_[i] + (u - i) * (values_[i + 1] - values_[i]);
 }
 
 double RingProfile::integral(double T) const {
     double rings = std::floor(T);
     double u = (T - rings) * kTableSize;
-    int i = static_cast<int>(u);
-    if (i >= kTableSize) i = kTableSize - 1;
+    int i = tableCell(u);
     double within = cumulative_[i] + (u - i) * (cumulative_[i + 1] - cumulative_[i]);
     return rings * cumulative_.back() + within;
 }

@@ -10,6 +10,7 @@
 #include "skeleton/ring_series.h"
 #include "skeleton/segment_geometry.h"
 #include "util/json_reader.h"
+#include "util/limits.h"
 
 namespace nenrin {
 
@@ -20,6 +21,8 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr double kOnChainTolerance = 1e-3;
 /// m: no tree lays down a ring wider than this in a year.
 constexpr double kMaxRingWidth = 0.1;
+/// Past this eq. 10's dieback is a wall already: larger exponents only overflow.
+constexpr double kMaxDiebackExponent = 100;
 
 struct ChainGeometry {
     std::vector<Vec3> points;
@@ -70,7 +73,8 @@ public:
         JsonReader root(json, file_);
         root.string("description", "");
         root.choice("format", "nenrin-skeleton", {"nenrin-skeleton"});
-        elongationSpeed_ = root.positive("elongation_speed", 1.0);
+        elongationSpeed_ = root.atLeast("elongation_speed", 1.0, kMinElongationSpeed,
+                                        "m/year: 0.1 mm a year, slower than any tree grows");
 
         if (!root.has("trunk")) throw root.error("trunk", "missing required trunk");
         auto trunk = root.object("trunk");
@@ -100,11 +104,12 @@ public:
             bool anyRing = false;
             for (size_t i = 0; i < widths.size(); ++i) {
                 // 0 is a locally absent ring: it merges with its neighbour.
-                if (!(widths[i] >= 0) || !std::isfinite(widths[i]) || widths[i] > kMaxRingWidth)
+                if (!(widths[i] == 0 || widths[i] >= kMinRingWidth) || !std::isfinite(widths[i]) ||
+                    widths[i] > kMaxRingWidth)
                     throw root.error("ring_widths",
-                                     fmt::format("entry {} is {}: expected a ring width in m, "
-                                                 "from 0 to {}",
-                                                 i, widths[i], kMaxRingWidth));
+                                     fmt::format("entry {} is {:g}: expected a ring width in m, "
+                                                 "0 (an absent ring) or from {:g} (1 um) to {:g}",
+                                                 i, widths[i], kMinRingWidth, kMaxRingWidth));
                 anyRing |= widths[i] > 0;
             }
             if (!widths.empty() && !anyRing)
@@ -127,7 +132,12 @@ public:
             if (name.empty()) throw series->error("file", "expected the .rwl file's name");
             std::string id = series->string("series", "");
             if (id.empty()) throw series->error("series", "expected a series ID of that file");
-            double meanMm = series->inRange("mean_width", 0, 0, 1000 * kMaxRingWidth);
+            double meanMm = series->zeroOrAtLeast("mean_width", 0, 1000 * kMinRingWidth,
+                                                  "mm: 1 um; 0 keeps the measured widths");
+            if (meanMm > 1000 * kMaxRingWidth)
+                throw series->error("mean_width",
+                                    fmt::format("expected at most {:g} mm, found {:g}",
+                                                1000 * kMaxRingWidth, meanMm));
             series->finish();
             std::filesystem::path p(name);
             if (p.is_relative()) p = std::filesystem::path(file_).parent_path() / p;
@@ -204,10 +214,15 @@ private:
 
     BranchDefaults readProperties(JsonReader& r, const BranchDefaults& base) {
         BranchDefaults p = base;
-        p.gamma = r.positive("gamma", base.gamma);
-        p.deathTime = r.has("death_time") ? r.positive("death_time", 1) : base.deathTime;
-        p.diebackExponent = r.nonNegative("dieback_exponent", base.diebackExponent);
-        p.length = r.has("length") ? r.positive("length", 1) : base.length;
+        p.gamma = r.atLeast("gamma", base.gamma, kMinBranchGamma,
+                            "of the trunk's radial speed: a branch thickening a thousandth as "
+                            "fast");
+        p.deathTime = r.has("death_time") ? r.atLeast("death_time", 1, kMinDeathTime, "years")
+                                          : base.deathTime;
+        p.diebackExponent =
+            r.inRange("dieback_exponent", base.diebackExponent, 0, kMaxDiebackExponent);
+        p.length =
+            r.has("length") ? r.atLeast("length", 1, kMinBranchLength, "m: 1 mm") : base.length;
         return p;
     }
 

@@ -133,6 +133,24 @@ double JsonReader::inRange(const std::string& key, double fallback, double lo, d
     return v;
 }
 
+double JsonReader::atLeast(const std::string& key, double fallback, double minimum,
+                           const std::string& meaning) {
+    double v = number(key, fallback);
+    if (!(v >= minimum))
+        throw error(key,
+                    fmt::format("expected at least {:g} ({}), found {:g}", minimum, meaning, v));
+    return v;
+}
+
+double JsonReader::zeroOrAtLeast(const std::string& key, double fallback, double minimum,
+                                 const std::string& meaning) {
+    double v = number(key, fallback);
+    if (!(v == 0 || v >= minimum))
+        throw error(
+            key, fmt::format("expected 0 or at least {:g} ({}), found {:g}", minimum, meaning, v));
+    return v;
+}
+
 long long JsonReader::integer(const std::string& key, long long fallback, long long lo,
                               long long hi) {
     if (!has(key)) return fallback;

@@ -53,6 +53,15 @@ public:
     double nonNegative(const std::string& key, double fallback);
     /// A finite number in [lo, hi].
     double inRange(const std::string& key, double fallback, double lo, double hi);
+    /// A finite number >= minimum, the smallest value that makes physical sense; `meaning`
+    /// says what the minimum is in words for the message ("m/year: 0.1 mm a year, ..."). Speeds,
+    /// widths and wavelengths below such a minimum overflow the growth field (1e-308 once
+    /// crashed it), so every one has its minimum.
+    double atLeast(const std::string& key, double fallback, double minimum,
+                   const std::string& meaning);
+    /// 0 (a default the file leaves to nenrin) or atLeast(key, ..., minimum, meaning).
+    double zeroOrAtLeast(const std::string& key, double fallback, double minimum,
+                         const std::string& meaning);
     long long integer(const std::string& key, long long fallback, long long lo, long long hi);
     bool boolean(const std::string& key, bool fallback);
     std::string string(const std::string& key, const std::string& fallback);

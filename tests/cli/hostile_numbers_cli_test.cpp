@@ -28,6 +28,58 @@ TEST_F(HostileNumbersCliTest, HugeSceneValuesAreRefusedWhereTheyAreRead) {
             {where, "beyond the +-1e+09"});
 }
 
+TEST_F(HostileNumbersCliTest, TinySpeedsWidthsAndWavelengthsAreRefused) {
+    // 1e-308 as an elongation speed once made every birth time infinite and crashed the shader
+    // (RingProfile::lateWood); 1e-30 as a sway wavelength crashed the field. Every speed, width
+    // and wavelength has a minimum that makes physical sense, named in the message.
+    const std::string rwl = (kSourceDir / "data/rings/nm580.rwl").string();
+    const std::string trunk = R"("trunk": {"points": [[0,0,0],[0,0,10]]})";
+    const std::string branch = R"("branches": [{"height": 1, "azimuth": 0, "elevation": 30, )";
+    struct Case {
+        std::string key;
+        std::string skeleton, grain;  ///< JSON with @ for the number
+        std::string minimum;          ///< how the message names the smallest value allowed
+    };
+    const std::vector<Case> cases = {
+        {"elongation_speed", "{\"elongation_speed\": @, " + trunk + "}", "",
+         "at least 0.0001 (m/year"},
+        {"ring_widths", "{" + trunk + R"(, "ring_widths": [@, @, @]})", "", "from 1e-06 (1 um)"},
+        {"ring_series.mean_width",
+         "{" + trunk + R"(, "ring_series": {"file": ")" + rwl +
+             R"(", "series": "BCS05B", "mean_width": @}})",
+         "", "at least 0.001 (mm"},
+        {"branches[0].gamma", "{" + trunk + ", " + branch + R"("gamma": @}]})", "",
+         "at least 0.001 (of the trunk"},
+        {"branches[0].length", "{" + trunk + ", " + branch + R"("length": @}]})", "",
+         "at least 0.001 (m"},
+        {"branches[0].death_time", "{" + trunk + ", " + branch + R"("death_time": @}]})", "",
+         "at least 0.01 (years"},
+        {"radial_speed", "", R"({"radial_speed": @})", "at least 1e-05 (m/year"},
+        {"rings.mean_width", "", R"({"rings": {"mean_width": @}})", "at least 1e-06 (m"},
+        {"sway.wavelength", "", R"({"sway": {"amplitude": 0.001, "wavelength": @}})",
+         "at least 0.01 (m"},
+        {"colour.micro.cell_size", "", R"({"colour": {"micro": {"cell_size": @}}})",
+         "at least 1e-06 (m"}};
+    for (const Case& c : cases)
+        for (const char* tiny : {"1e-308", "5e-324", "1e-30"}) {
+            SCOPED_TRACE(c.key + " = " + tiny);
+            auto fill = [&](std::string text) {
+                for (size_t at; (at = text.find('@')) != std::string::npos;)
+                    text.replace(at, 1, tiny);
+                return text;
+            };
+            Options options;
+            if (!c.skeleton.empty()) {
+                std::ofstream(in_ / "s.json") << fill(c.skeleton);
+                options["--skeleton"] = (in_ / "s.json").string();
+            } else {
+                std::ofstream(in_ / "g.json") << fill(c.grain);
+                options["--grain"] = (in_ / "g.json").string();
+            }
+            expectInputError(slice(options), {": " + c.key + ": ", c.minimum});
+        }
+}
+
 TEST_F(HostileNumbersCliTest, NanOptionsAreRefusedByTheParser) {
     auto r = run(
         {"render", kScene.string(), "--noise-threshold", "nan", "-o", (out_ / "x.exr").string()});

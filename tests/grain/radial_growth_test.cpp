@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "grain/growth_field.h"
 #include "tests/grain/ring_radius.h"
 #include "tests/test_trees.h"
@@ -65,6 +68,18 @@ TEST(RadialGrowth, ConstantWidthsEqualToSbChangeNothing) {
         EXPECT_NEAR(sa.T, sb.T, 1e-9) << i;
         EXPECT_NEAR(sa.knot, sb.knot, 1e-9) << i;
     }
+}
+
+TEST(RadialGrowth, NonFiniteTimesIndexNoYear) {
+    // A NaN growth time (from an overflowed input) once indexed the year table with
+    // size_t(NaN); it has no year, and the answer is NaN, never a read past the table.
+    RadialGrowth g({0.002, 0.004, 0.003}, 0.003);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_TRUE(std::isnan(g.cumulative(nan)));
+    EXPECT_TRUE(std::isnan(g.inverseCumulative(nan)));
+    EXPECT_EQ(g.cumulative(1e300), 0.009 + (1e300 - 3) * 0.003);
+    EXPECT_EQ(g.cumulative(-std::numeric_limits<double>::infinity()),
+              -std::numeric_limits<double>::infinity());
 }
 
 }  // namespace

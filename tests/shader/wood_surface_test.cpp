@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "grain/cielab.h"
 #include "grain/growth_terms.h"
@@ -29,6 +30,21 @@ TEST(RingProfile, FilteredMatchesTheMeanOfPointSamples) {
             }
         }
     }
+}
+
+TEST(RingProfile, NonFiniteGrowthTimesStayInTheTable) {
+    // An infinite T (a tiny elongation speed once made every birth time infinite) has no ring
+    // phase; the table was indexed with int(NaN) and the shader crashed.
+    RingProfile rings(4);
+    for (double T :
+         {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+          std::numeric_limits<double>::quiet_NaN()}) {
+        const double e = rings.lateWood(T);
+        EXPECT_TRUE(std::isnan(e) || (e >= 0 && e <= 1)) << T;
+        (void)rings.filtered(T, 0.5);
+        (void)rings.filteredSlope(T, 0.5);
+    }
+    EXPECT_EQ(rings.lateWood(1e300), rings.lateWood(0));
 }
 
 TEST(RingProfile, TableFollowsEquationSix) {

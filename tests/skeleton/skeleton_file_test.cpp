@@ -89,11 +89,13 @@ TEST(SkeletonFile, BadInputNamesThePlace) {
               "s.json: trunk.points: expected at least 2 trunk points, found 0");
     EXPECT_EQ(errorOf(R"({"branches": []})"), "s.json: trunk: missing required trunk");
     EXPECT_EQ(errorOf(R"({"elongation_speed": -2, "trunk": {"points": [[0,0,0],[0,0,1]]}})"),
-              "s.json: elongation_speed: expected a number > 0, found -2");
+              "s.json: elongation_speed: expected at least 0.0001 (m/year: 0.1 mm a year, slower "
+              "than any tree grows), found -2");
     EXPECT_EQ(errorOf(R"({"trunk": {"points": [[0,0,0],[0,0,1]]},
         "branches": [{"height": 0.5, "direction": [1,0,0]},
                      {"height": 0.5, "direction": [1,0,0], "gamma": 0}]})"),
-              "s.json: branches[1].gamma: expected a number > 0, found 0");
+              "s.json: branches[1].gamma: expected at least 0.001 (of the trunk's radial speed: "
+              "a branch thickening a thousandth as fast), found 0");
     EXPECT_NE(errorOf(R"({"trunk": {"points": [[0,0,0],[0,0,1]]},
         "branches": [{"start": [0.5, 0, 0.5], "direction": [1,0,0]}]})")
                   .find("branches[0].start: the branch starts 0.5 m off its parent trunk"),
