@@ -17,12 +17,11 @@
 #include "renderer/lights.h"
 #include "renderer/parallel_tiles.h"
 #include "renderer/ray_scene.h"
+#include "renderer/sample_dimensions.h"
 #include "shader/surface_bsdf.h"
 #include "util/axis_frame.h"
-#include "util/hash.h"
 #include "util/memory_budget.h"
 #include "util/progress.h"
-#include "util/scrambled_sobol.h"
 
 namespace nenrin {
 
@@ -35,25 +34,7 @@ constexpr double kKnotRefinement = 0.02;
 constexpr uint32_t kSamplesPerPass = 64;
 /// Adaptive sampling: samples every pixel takes before its noise is first estimated.
 constexpr uint32_t kDefaultMinSpp = 16;
-/// Random dimensions: 0-3 camera (pixel jitter, lens), then kDimsPerBounce per bounce.
-constexpr uint64_t kLightDims = 2;
-/// Bounces are spaced far apart so a scene's light count never makes two bounces share one.
-constexpr uint64_t kDimsPerBounce = 1 << 16;
 constexpr double kRegularisedRoughness = 0.3;
-
-/// The counter-based random number for (pixel, sample, dimension).
-double randomAt(uint64_t seed, uint64_t pixel, uint64_t sample, uint64_t dimension) {
-    return uniform01(hashCombine(seed, pixel), sample, dimension);
-}
-
-/// Two dimensions that sample one 2D domain together (a lens point, a light point, a BSDF
-/// direction): a scrambled Sobol pair of their own per pixel, so a pixel's samples stratify
-/// each such domain.
-std::pair<double, double> pairAt(uint64_t seed, uint64_t pixel, uint64_t sample,
-                                 uint64_t dimension) {
-    return scrambledSobol2D(static_cast<uint32_t>(sample),
-                            hashCombine(hashCombine(seed, pixel), dimension));
-}
 
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
 bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
@@ -152,11 +133,11 @@ private:
         auto [lu, lv] = lensSample(path, pixelId);
         return camera_.generate(path.filmX, path.filmY, lu, lv, differentialScale_);
     }
-    /// The sample's point on the lens (random dimensions 2 and 3; a pinhole needs none).
+    /// The sample's point on the lens (a pinhole needs none).
     std::pair<double, double> lensSample(const PathState& path, uint64_t pixelId) const {
         if (!camera_.hasLens()) return {0, 0};
         const uint64_t seed = scene_.settings.seed;
-        return pairAt(seed, pixelId, path.sample, 2);
+        return pairAt(seed, pixelId, path.sample, dimension::kLens);
     }
     /// Fills groupResults_ (one per pixel) and groupStart_ for a camera batch of n entries.
     void shadeCameraWood(const WoodShader& shader, size_t n);
@@ -237,8 +218,10 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
             uint64_t id = uint64_t(y0 + j) * settings.width + (x0 + i);
             pixelIds[p] = id;
             // Pixel jitter: the R2 sequence over the samples, rotated per pixel.
-            rotations[2 * p] = randomAt(settings.seed, id, 0xffffffffull, 0);
-            rotations[2 * p + 1] = randomAt(settings.seed, id, 0xffffffffull, 1);
+            rotations[2 * p] =
+                randomAt(settings.seed, id, dimension::kPixelSample, dimension::kJitterRotationX);
+            rotations[2 * p + 1] =
+                randomAt(settings.seed, id, dimension::kPixelSample, dimension::kJitterRotationY);
         }
     }
 
@@ -679,10 +662,7 @@ void TileRenderer::shadeCameraWood(const WoodShader& shader, size_t n) {
 void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
                          const WoodSurfaceSample* wood, TileAovs& aovs) {
     const RenderSettings& settings = scene_.settings;
-    const uint64_t dim = 4 + path.depth * kDimsPerBounce;
-    const uint64_t lightDims = 4;
-    auto rnd = [&](uint64_t k) { return randomAt(settings.seed, pixelId, path.sample, dim + k); };
-    // Dimensions of this bounce: 0-3 BSDF sampling and roulette, then two per light.
+    const BounceRandom rnd(settings.seed, pixelId, path.sample, path.depth);
     const Vec3 wo = -path.ray.direction;
     const bool camera = path.depth == 0;
 
@@ -832,8 +812,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
     // Next-event estimation: one sample of every light in lightSelection_.everyVertex() (with a
     // few lights all of them: far less noisy than picking one of a sun and a sky at random),
     // and with many local lights one more, picked by its importance here, its sample divided by
-    // the odds of picking it. Sampled light k takes the random pair at lightDims + 2k; the pick
-    // takes the dimension after the last pair.
+    // the odds of picking it.
     const bool continues = path.depth + 1 < settings.maxDepth;
     if (woLocal.z > 0) {
         const std::vector<uint32_t>& everyVertex = lightSelection_.everyVertex();
@@ -841,7 +820,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
         double pickedProbability = 1;
         if (lightSelection_.picksOne())
             picked = lightSelection_.select(path.hit.position, ng,
-                                            rnd(lightDims + kLightDims * (everyVertex.size() + 1)),
+                                            rnd.at(dimension::lightPick(everyVertex.size())),
                                             pickedProbability, lightCdf_);
         const size_t sampled = everyVertex.size() + (picked < scene_.lights.size());
         for (size_t k = 0; k < sampled; ++k) {
@@ -849,8 +828,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
             const double selected = k < everyVertex.size() ? 1 : pickedProbability;
             const Light& light = scene_.lights[li];
             LightSample ls;
-            uint64_t d = lightDims + kLightDims * k;
-            const auto [u, v] = pairAt(settings.seed, pixelId, path.sample, dim + d);
+            const auto [u, v] = rnd.pair(dimension::lightPair(k));
             if (!sampleLight(light, path.hit.position, u, v, ls) || dot(ls.direction, ng) <= 0)
                 continue;
             Vec3 wiLocal = frame.toLocal(ls.direction);
@@ -879,8 +857,8 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
     // Continue the path.
     SurfaceBsdf::Sample bs;
     bool more = path.depth + 1 < settings.maxDepth && [&] {
-        const auto [u, v] = pairAt(settings.seed, pixelId, path.sample, dim + 1);
-        return bsdf.sample(woLocal, rnd(0), u, v, bs);
+        const auto [u, v] = rnd.pair(dimension::kBsdfDirection);
+        return bsdf.sample(woLocal, rnd.at(dimension::kBsdfLobe), u, v, bs);
     }();
     Vec3 wi = more ? frame.toWorld(bs.wi) : Vec3{};
     if (more && dot(wi, ng) <= 0) more = false;
@@ -888,7 +866,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
         path.throughput = multiply(path.throughput, bs.weight);
         if (path.depth >= 2) {
             double q = std::min(0.95, maxComponent(path.throughput));
-            if (rnd(3) >= q)
+            if (rnd.at(dimension::kRoulette) >= q)
                 more = false;
             else
                 path.throughput = path.throughput * (1 / q);
