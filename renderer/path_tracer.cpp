@@ -587,7 +587,6 @@ void TileRenderer::shadeWood(std::vector<PathState>& paths,
                 w.coverage = woodPlain_[k].coverage;
                 w.T = woodPlain_[k].T;
                 w.knot = woodPlain_[k].knot;
-                w.roughness = shader.finish().coatRoughness;
             }
         }
         const RigidTransform worldFromTree = treeFromWorld.inverse();
