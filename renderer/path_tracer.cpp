@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "renderer/adaptive_sampling.h"
 #include "renderer/camera.h"
 #include "renderer/light_selection.h"
 #include "renderer/lights.h"
@@ -32,8 +33,6 @@ constexpr int kTileSize = kRenderTileSize;
 /// 1 - this) is shaded per sample.
 constexpr double kKnotRefinement = 0.02;
 constexpr uint32_t kSamplesPerPass = 64;
-/// Adaptive sampling: samples every pixel takes before its noise is first estimated.
-constexpr uint32_t kDefaultMinSpp = 16;
 constexpr double kRegularisedRoughness = 0.3;
 
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
@@ -92,17 +91,12 @@ struct PathState {
 /// Per-pixel AOV accumulators of one tile.
 struct TileAovs {
     std::vector<Rgb> rgb, albedo;
-    /// Adaptive sampling only: the radiance of the pixel's first halfCount samples.
-    std::vector<Rgb> rgbHalf;
-    std::vector<uint32_t> halfCount;
     std::vector<Vec3> normal;
     std::vector<double> hits, depth, woodHits, growthTime, knot;
     std::vector<int32_t> lamella;
-    explicit TileAovs(size_t n, bool adaptive)
+    explicit TileAovs(size_t n)
         : rgb(n),
           albedo(n),
-          rgbHalf(adaptive ? n : 0),
-          halfCount(adaptive ? n : 0),
           normal(n),
           hits(n),
           depth(n),
@@ -144,8 +138,6 @@ private:
     void shade(uint32_t index, PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood,
                TileAovs& aovs);
     void traceShadows(std::vector<PathState>& paths, TileAovs& aovs);
-    /// Adaptive sampling: raises samplesTarget_ of the pixels that need more samples.
-    void planNextRound(int tw, int th, const TileAovs& aovs, double threshold, uint32_t spp);
 
     const Scene& scene_;
     const RayScene& rays_;
@@ -172,10 +164,8 @@ private:
         AxisFrame frame;
         std::vector<Rgb> lightValue;  ///< BSDF value towards each distant light; r < 0: unknown
     } shared_;
-    std::vector<uint8_t> finished_;                      ///< paths that ended this bounce
-    std::vector<uint32_t> samplesDone_, samplesTarget_;  ///< per pixel of the tile
-    std::vector<double> noiseRatio_;
-    std::vector<uint8_t> noisy_;
+    std::vector<uint8_t> finished_;  ///< paths that ended this bounce
+    TileSampling sampling_;          ///< how many samples each pixel of the tile takes
     std::vector<uint64_t> pixelIds_;
     std::vector<double> rotations_;
     std::vector<uint32_t> woodPathIds_, woodOrder_;
@@ -225,30 +215,15 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
         }
     }
 
-    // Adaptive sampling: rounds. Every pixel first takes minSpp samples; then each pixel whose
-    // pooled noise estimate, or a neighbour's, is above the threshold doubles its samples, up
-    // to spp (planNextRound). Decisions use this tile's pixels only (tiles are fixed, whatever the
-    // thread count), and a pixel's k-th sample is the same wherever it is taken: the image is
-    // deterministic.
-    const bool adaptive = settings.noiseThreshold > 0;
-    const uint32_t firstRound =
-        adaptive ? std::min(spp, settings.minSpp > 0 ? static_cast<uint32_t>(settings.minSpp)
-                                                     : std::min(spp, kDefaultMinSpp))
-                 : spp;
-    TileAovs aovs(pixels, adaptive);
-    std::vector<uint32_t>& done = samplesDone_;
-    std::vector<uint32_t>& target = samplesTarget_;
-    done.assign(pixels, 0);
-    target.assign(pixels, firstRound);
-    if (adaptive) aovs.halfCount.assign(pixels, firstRound / 2);
+    TileAovs aovs(pixels);
+    sampling_.start(tw, th, settings);
+    const std::vector<uint32_t>& done = sampling_.samplesDone();
+    const std::vector<uint32_t>& target = sampling_.samplesTarget();
     std::vector<PathState>& paths = paths_;
-    while (true) {
-        // Samples go through in passes of at most kSamplesPerPass per pixel, which bounds
-        // memory at any spp; each pixel still adds its samples in order, so sums are
-        // deterministic.
-        uint32_t longest = 0;
-        for (size_t p = 0; p < pixels; ++p) longest = std::max(longest, target[p] - done[p]);
-        if (longest == 0) break;
+    // Rounds of samples (one without adaptive sampling), each in passes of at most
+    // kSamplesPerPass samples per pixel, which bounds memory at any spp; each pixel still adds
+    // its samples in order, so sums are deterministic.
+    while (const uint32_t longest = sampling_.longestRound()) {
         for (uint32_t k0 = 0; k0 < longest; k0 += kSamplesPerPass) {
             size_t count = 0;
             for (size_t p = 0; p < pixels; ++p)
@@ -299,15 +274,7 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
                 if (!any) break;
             }
         }
-        done = target;
-        if (!adaptive) break;
-        planNextRound(tw, th, aovs, settings.noiseThreshold, spp);
-        // The next estimate compares a pixel's mean with the mean of the samples it has now.
-        for (size_t p = 0; p < pixels; ++p)
-            if (target[p] > done[p]) {
-                aovs.rgbHalf[p] = aovs.rgb[p];
-                aovs.halfCount[p] = done[p];
-            }
+        sampling_.endRound(aovs.rgb);
     }
 
     // Into the film: this tile's pixels only, so threads never share a pixel.
@@ -343,54 +310,6 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
     }
     for (size_t p = 0; p < pixels; ++p) stats.cameraRays += done[p];
     stats.rays += rayCount_;
-}
-
-void TileRenderer::planNextRound(int tw, int th, const TileAovs& aovs, double threshold,
-                                 uint32_t spp) {
-    // Each pixel's noise: how far its mean I over n samples has moved from the mean A of its
-    // first m (half of them): for independent samples E|I - A|^2 = sigma^2 (1/m - 1/n), so
-    // |I - A|^2 m / (n - m) estimates the squared standard error of I, and with stratified
-    // samples it follows their faster convergence. Summed over R, G, B and taken over the mean
-    // (the error after a display's gamma, up to a factor). One such draw is noisy, so each
-    // pixel takes the mean of its 3 x 3 neighbourhood's (27 draws) before it is compared.
-    const size_t pixels = size_t(tw) * th;
-    std::vector<double>& ratio = noiseRatio_;
-    ratio.assign(pixels, 0);
-    for (size_t p = 0; p < pixels; ++p) {
-        const double n = samplesDone_[p], m = aovs.halfCount[p];
-        if (m < 1 || n <= m) {
-            ratio[p] = std::numeric_limits<double>::infinity();
-            continue;
-        }
-        const Rgb mean = aovs.rgb[p] * (1 / n);
-        const Rgb d = mean - aovs.rgbHalf[p] * (1 / m);
-        const double error2 = (d.r * d.r + d.g * d.g + d.b * d.b) * m / (n - m);
-        ratio[p] = error2 / std::max(mean.r + mean.g + mean.b, 1e-4);
-    }
-    std::vector<uint8_t>& noisy = noisy_;
-    noisy.assign(pixels, 0);
-    for (int j = 0; j < th; ++j)
-        for (int i = 0; i < tw; ++i) {
-            double sum = 0;
-            int count = 0;
-            for (int v = std::max(0, j - 1); v <= std::min(th - 1, j + 1); ++v)
-                for (int u = std::max(0, i - 1); u <= std::min(tw - 1, i + 1); ++u, ++count)
-                    sum += ratio[size_t(v) * tw + u];
-            noisy[size_t(j) * tw + i] = sum > threshold * threshold * count;
-        }
-    // A pixel goes on if it or a neighbour is noisy: a single estimate from few samples can
-    // look converged by chance, and noise comes in patches.
-    for (int j = 0; j < th; ++j)
-        for (int i = 0; i < tw; ++i) {
-            const size_t p = size_t(j) * tw + i;
-            bool more = false;
-            for (int dj = -1; dj <= 1 && !more; ++dj)
-                for (int di = -1; di <= 1 && !more; ++di) {
-                    const int u = i + di, v = j + dj;
-                    more = u >= 0 && v >= 0 && u < tw && v < th && noisy[size_t(v) * tw + u];
-                }
-            if (more) samplesTarget_[p] = std::min(spp, 2 * samplesDone_[p]);
-        }
 }
 
 void TileRenderer::traceCamera(std::vector<PathState>& paths) {
@@ -471,8 +390,7 @@ void TileRenderer::traceShadows(std::vector<PathState>& paths, TileAovs& aovs) {
                 path.radiance = path.radiance + shadows_[next].contribution;
         if (!finished_[i]) continue;
         aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
-        if (!aovs.halfCount.empty() && path.sample < aovs.halfCount[path.pixel])
-            aovs.rgbHalf[path.pixel] = aovs.rgbHalf[path.pixel] + path.radiance;
+        sampling_.addSample(path.pixel, path.sample, path.radiance);
     }
 }
 
