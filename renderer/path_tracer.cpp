@@ -14,6 +14,7 @@
 
 #include "renderer/adaptive_sampling.h"
 #include "renderer/camera.h"
+#include "renderer/film_tile.h"
 #include "renderer/light_selection.h"
 #include "renderer/lights.h"
 #include "renderer/parallel_tiles.h"
@@ -86,24 +87,6 @@ struct PathState {
     /// Path regularisation: after a diffuse bounce, glossy lobes are at least this rough, so
     /// sun glints seen through diffuse bounces (caustics) blur instead of sparkling.
     double minRoughness = 0;
-};
-
-/// Per-pixel AOV accumulators of one tile.
-struct TileAovs {
-    std::vector<Rgb> rgb, albedo;
-    std::vector<Vec3> normal;
-    std::vector<double> hits, depth, woodHits, growthTime, knot;
-    std::vector<int32_t> lamella;
-    explicit TileAovs(size_t n)
-        : rgb(n),
-          albedo(n),
-          normal(n),
-          hits(n),
-          depth(n),
-          woodHits(n),
-          growthTime(n),
-          knot(n),
-          lamella(n, -1) {}
 };
 
 class TileRenderer {
@@ -277,37 +260,7 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
         sampling_.endRound(aovs.rgb);
     }
 
-    // Into the film: this tile's pixels only, so threads never share a pixel.
-    for (int j = 0; j < th; ++j) {
-        for (int i = 0; i < tw; ++i) {
-            size_t p = size_t(j) * tw + i;
-            size_t f = size_t(y0 + j - film.firstRow) * film.width + (x0 + i);
-            const double inv = 1.0 / done[p];
-            Rgb c = aovs.rgb[p] * inv;
-            film.rgb[3 * f] = float(c.r);
-            film.rgb[3 * f + 1] = float(c.g);
-            film.rgb[3 * f + 2] = float(c.b);
-            film.alpha[f] = float(aovs.hits[p] * inv);
-            if (!film.samples.empty()) film.samples[f] = float(done[p]);
-            if (aovs.hits[p] > 0) {
-                double h = 1 / aovs.hits[p];
-                Rgb a = aovs.albedo[p] * h;
-                Vec3 n = aovs.normal[p] * h;
-                film.albedo[3 * f] = float(a.r);
-                film.albedo[3 * f + 1] = float(a.g);
-                film.albedo[3 * f + 2] = float(a.b);
-                film.normal[3 * f] = float(n.x);
-                film.normal[3 * f + 1] = float(n.y);
-                film.normal[3 * f + 2] = float(n.z);
-                film.depth[f] = float(aovs.depth[p] * h);
-            }
-            if (aovs.woodHits[p] > 0) {
-                film.growthTime[f] = float(aovs.growthTime[p] / aovs.woodHits[p]);
-                film.knot[f] = float(aovs.knot[p] / aovs.woodHits[p]);
-            }
-            film.lamella[f] = float(aovs.lamella[p]);
-        }
-    }
+    aovs.writeInto(film, x0, y0, tw, th, done);
     for (size_t p = 0; p < pixels; ++p) stats.cameraRays += done[p];
     stats.rays += rayCount_;
 }
@@ -603,10 +556,9 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
                     rectLightPdf(l, path.ray.direction, path.hit.distance) *
                     lightSelection_.probability(path.hit.index, path.lastPosition, path.lastNormal);
             if (camera) {
-                aovs.hits[path.pixel] += 1;
-                aovs.depth[path.pixel] +=
-                    path.hit.distance * dot(path.ray.direction, camera_.forward());
-                aovs.normal[path.pixel] += path.hit.geometricNormal;
+                aovs.addEmitterHit(path.pixel,
+                                   path.hit.distance * dot(path.ray.direction, camera_.forward()),
+                                   path.hit.geometricNormal);
             }
         }
         double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
@@ -714,15 +666,9 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
     const Vec3 woLocal = frame.toLocal(wo);
 
     if (camera) {
-        aovs.hits[path.pixel] += 1;
-        aovs.albedo[path.pixel] = aovs.albedo[path.pixel] + bsdf.base;
-        aovs.normal[path.pixel] += ns;
-        aovs.depth[path.pixel] += path.hit.distance * dot(path.ray.direction, camera_.forward());
-        if (wood) {
-            aovs.woodHits[path.pixel] += 1;
-            aovs.growthTime[path.pixel] += wood->T;
-            aovs.knot[path.pixel] += wood->knot;
-        }
+        aovs.addSurfaceHit(path.pixel, bsdf.base, ns,
+                           path.hit.distance * dot(path.ray.direction, camera_.forward()));
+        if (wood) aovs.addWoodHit(path.pixel, wood->T, wood->knot);
         if (path.sample == 0) aovs.lamella[path.pixel] = path.lamella;
     }
 
