@@ -17,6 +17,7 @@
 #include "renderer/film_tile.h"
 #include "renderer/light_selection.h"
 #include "renderer/lights.h"
+#include "renderer/material_bsdf.h"
 #include "renderer/parallel_tiles.h"
 #include "renderer/ray_scene.h"
 #include "renderer/sample_dimensions.h"
@@ -142,9 +143,8 @@ private:
     /// The shading state shared by the camera samples of one pixel and board face (shade).
     struct SharedSurface {
         const WoodSurfaceSample* wood = nullptr;
-        Vec3 ng, ns;
-        SurfaceBsdf bsdf;
-        AxisFrame frame;
+        Vec3 ng;
+        SurfaceShading surface;
         std::vector<Rgb> lightValue;  ///< BSDF value towards each distant light; r < 0: unknown
     } shared_;
     std::vector<uint8_t> finished_;  ///< paths that ended this bounce
@@ -582,87 +582,22 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
     const bool shareable = camera && material.type == MaterialType::Wood && wood != nullptr &&
                            !(path.glue && path.glueCover > 0);
     const bool reuse = shareable && shared_.wood == wood && shared_.ng == ng;
-    SurfaceBsdf bsdf;
-    AxisFrame frame;
+    SurfaceShading surface;
     if (reuse) {
-        bsdf = shared_.bsdf;
-        ns = shared_.ns;
-        frame = shared_.frame;
+        surface = shared_.surface;
     } else {
-        Vec3 texturedFibre;
-        if (material.type == MaterialType::Wood) {
-            const Finish& finish = material.wood->finish();
-            if (wood->coverage > 0) {
-                bsdf.base = multiply(wood->albedo, path.boardTint);
-                bsdf.fibreStrength = finish.fibreStrength;
-                bsdf.fibreWidth = finish.fibreWidth;
-            } else {
-                // Past the felled log's wood: the shader's bark where it drew one (camera
-                // hits), the plain bark colour otherwise.
-                bsdf.base = wood->albedo == Rgb{} ? kBarkAlbedo : wood->albedo;
-            }
-            if (path.glue && path.glueCover > 0) {
-                const double* g = path.glue->colour;
-                bsdf.base = mix(bsdf.base, Rgb{g[0], g[1], g[2]}, path.glueCover);
-                bsdf.fibreStrength *= 1 - path.glueCover;
-            }
-            bsdf.coatWeight = finish.coatWeight;
-            bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
-            bsdf.ior = finish.coatIor;
-            // Relief: tilt the normal against the height gradient's part along the surface.
-            Vec3 g = wood->reliefGradient;
-            Vec3 bumped = normalize(ns - (g - ns * dot(g, ns)));
-            if (dot(bumped, wo) > 0) ns = bumped;
-        } else if (material.type == MaterialType::Textured) {
-            // Baked wood maps: the same layered surface, its inputs read from the textures in the
-            // tangent frame of the uv layout (tangent +u, bitangent +v).
-            const Finish& finish = material.finish;
-            Vec3 c = material.baseColourMap->lookup3(path.hit.u, path.hit.v);
-            bsdf.base = {c.x, c.y, c.z};
-            bsdf.coatWeight = finish.coatWeight;
-            bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
-            bsdf.ior = finish.coatIor;
-            Vec3 tangent = normalize(path.hit.dpdu - ns * dot(ns, path.hit.dpdu));
-            Vec3 bitangent = cross(ns, tangent);
-            if (dot(bitangent, path.hit.dpdv) < 0) bitangent = -bitangent;
-            auto fromTangentSpace = [&](const ImageTexture& map) {
-                Vec3 e = map.lookup3(path.hit.u, path.hit.v) * 2 - Vec3{1, 1, 1};
-                return tangent * e.x + bitangent * e.y + ns * e.z;
-            };
-            if (lengthSquared(tangent) > 0) {
-                if (material.normalMap) {
-                    Vec3 bumped = normalize(fromTangentSpace(*material.normalMap));
-                    if (dot(bumped, wo) > 0) ns = bumped;
-                }
-                if (material.fibreMap) {
-                    texturedFibre = normalize(fromTangentSpace(*material.fibreMap));
-                    bsdf.fibreStrength = finish.fibreStrength;
-                    bsdf.fibreWidth = finish.fibreWidth;
-                }
-            }
-        } else {
-            bsdf.base = material.colour;
-            if (material.type == MaterialType::Glossy) {
-                bsdf.coatWeight = 1;
-                bsdf.coatAlpha = std::max(material.roughness, path.minRoughness);
-            } else if (material.type == MaterialType::Metal) {
-                bsdf.metal = true;
-                bsdf.metalF0 = material.colour;
-                bsdf.metalAlpha = std::max(material.roughness, path.minRoughness);
-            }
-        }
-        frame = AxisFrame(ns);
-        if (wood && lengthSquared(wood->fibre) > 0) bsdf.fibre = frame.toLocal(wood->fibre);
-        if (lengthSquared(texturedFibre) > 0) bsdf.fibre = frame.toLocal(texturedFibre);
+        surface = materialBsdf(material, {&path.hit, wo, ns, wood, path.boardTint, path.glue,
+                                          path.glueCover, path.minRoughness});
         if (shareable) {
             shared_.wood = wood;
             shared_.ng = ng;
-            shared_.ns = ns;
-            shared_.bsdf = bsdf;
-            shared_.frame = frame;
+            shared_.surface = surface;
             shared_.lightValue.assign(scene_.lights.size(), Rgb{-1, -1, -1});
         }
     }
+    const SurfaceBsdf& bsdf = surface.bsdf;
+    const AxisFrame& frame = surface.frame;
+    ns = surface.ns;
     const Vec3 woLocal = frame.toLocal(wo);
 
     if (camera) {
