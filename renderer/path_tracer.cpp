@@ -14,8 +14,8 @@
 
 #include "renderer/adaptive_sampling.h"
 #include "renderer/camera.h"
+#include "renderer/direct_light.h"
 #include "renderer/film_tile.h"
-#include "renderer/light_selection.h"
 #include "renderer/lights.h"
 #include "renderer/material_bsdf.h"
 #include "renderer/parallel_tiles.h"
@@ -40,11 +40,6 @@ constexpr double kRegularisedRoughness = 0.3;
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
 bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
 
-double powerHeuristic(double a, double b) {
-    double a2 = a * a, b2 = b * b;
-    return a2 + b2 > 0 ? a2 / (a2 + b2) : 0;
-}
-
 /// Share of a footprint of diameter `footprint` centred `distance` from the middle of a line
 /// of `width`: the box-filtered glue line, so it neither aliases nor vanishes far away.
 double glueCoverage(double distance, double width, double footprint) {
@@ -52,12 +47,6 @@ double glueCoverage(double distance, double width, double footprint) {
     double overlap = std::min(distance + 0.5 * width, 0.5 * footprint) -
                      std::max(distance - 0.5 * width, -0.5 * footprint);
     return std::clamp(overlap / footprint, 0.0, 1.0);
-}
-
-/// Ray origin nudged off the surface along the geometric normal, to the side of `towards`.
-Vec3 offsetOrigin(const Vec3& p, const Vec3& ng, const Vec3& towards) {
-    double scale = 1e-5 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
-    return p + ng * (dot(ng, towards) > 0 ? scale : -scale);
 }
 
 struct PathState {
@@ -93,11 +82,7 @@ struct PathState {
 class TileRenderer {
 public:
     TileRenderer(const Scene& scene, const RayScene& rays, const Camera& camera)
-        : scene_(scene),
-          rays_(rays),
-          camera_(camera),
-          env_(environmentLight(scene)),
-          lightSelection_(scene.lights, scene.settings.lightSelection) {}
+        : scene_(scene), rays_(rays), camera_(camera), directLight_(scene) {}
 
     void render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats);
 
@@ -126,20 +111,11 @@ private:
     const Scene& scene_;
     const RayScene& rays_;
     const Camera& camera_;
-    const Light* env_;
-    LightSelection lightSelection_;
-    std::vector<double> lightCdf_;  ///< LightSelection::select's scratch
+    DirectLight directLight_;
     uint64_t rayCount_ = 0;
     // Scratch, reused by the tiles one thread renders (no allocation per tile).
     std::vector<PathState> paths_;
-    struct PendingShadow {
-        uint32_t path;
-        Ray ray;
-        double tMax;
-        Rgb contribution;  ///< throughput x light sample, added if unoccluded
-        bool blocked = false;
-    };
-    std::vector<PendingShadow> shadows_;  ///< this bounce's light samples, in path order
+    std::vector<ShadowRay> shadows_;  ///< this bounce's light samples, in path order
     /// The shading state shared by the camera samples of one pixel and board face (shade).
     struct SharedSurface {
         const WoodSurfaceSample* wood = nullptr;
@@ -322,18 +298,7 @@ void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
 /// unoccluded contributions (in light order) and finished paths go into the film: the same
 /// sums in the same order as tracing each shadow ray where it was made.
 void TileRenderer::traceShadows(std::vector<PathState>& paths, TileAovs& aovs) {
-    Ray rays[16];
-    double tMax[16];
-    bool blocked[16];
-    for (size_t base = 0; base < shadows_.size(); base += 16) {
-        int count = static_cast<int>(std::min<size_t>(16, shadows_.size() - base));
-        for (int k = 0; k < count; ++k) {
-            rays[k] = shadows_[base + k].ray;
-            tMax[k] = shadows_[base + k].tMax;
-        }
-        rays_.occluded16(rays, tMax, count, blocked);
-        for (int k = 0; k < count; ++k) shadows_[base + k].blocked = blocked[k];
-    }
+    traceShadowRays(rays_, shadows_);
     rayCount_ += shadows_.size();
     size_t next = 0;
     for (uint32_t i = 0; i < paths.size(); ++i) {
@@ -540,26 +505,21 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
         Rgb le;
         double lightPdf = 0;
         if (!path.hit.hit) {
-            if (env_) {
-                le = env_->environment->radiance(path.ray.direction);
-                if (!camera)
-                    lightPdf = env_->environment->pdf(path.ray.direction) *
-                               lightSelection_.probability(
-                                   static_cast<size_t>(env_ - scene_.lights.data()),
-                                   path.lastPosition, path.lastNormal);
-            }
+            le = directLight_.environmentRadiance(path.ray.direction);
+            if (!camera)
+                lightPdf = directLight_.environmentPdf(path.ray.direction, path.lastPosition,
+                                                       path.lastNormal);
         } else {
             const Light& l = scene_.lights[path.hit.index];
             le = rectLightRadiance(l, path.ray.direction);
             if (!camera)
                 lightPdf =
-                    rectLightPdf(l, path.ray.direction, path.hit.distance) *
-                    lightSelection_.probability(path.hit.index, path.lastPosition, path.lastNormal);
-            if (camera) {
+                    directLight_.rectPdf(path.hit.index, path.ray.direction, path.hit.distance,
+                                         path.lastPosition, path.lastNormal);
+            if (camera)
                 aovs.addEmitterHit(path.pixel,
                                    path.hit.distance * dot(path.ray.direction, camera_.forward()),
                                    path.hit.geometricNormal);
-            }
         }
         double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
         path.radiance = path.radiance + multiply(path.throughput, le) * w;
@@ -607,50 +567,11 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
         if (path.sample == 0) aovs.lamella[path.pixel] = path.lamella;
     }
 
-    // Next-event estimation: one sample of every light in lightSelection_.everyVertex() (with a
-    // few lights all of them: far less noisy than picking one of a sun and a sky at random),
-    // and with many local lights one more, picked by its importance here, its sample divided by
-    // the odds of picking it.
-    const bool continues = path.depth + 1 < settings.maxDepth;
-    if (woLocal.z > 0) {
-        const std::vector<uint32_t>& everyVertex = lightSelection_.everyVertex();
-        size_t picked = scene_.lights.size();
-        double pickedProbability = 1;
-        if (lightSelection_.picksOne())
-            picked = lightSelection_.select(path.hit.position, ng,
-                                            rnd.at(dimension::lightPick(everyVertex.size())),
-                                            pickedProbability, lightCdf_);
-        const size_t sampled = everyVertex.size() + (picked < scene_.lights.size());
-        for (size_t k = 0; k < sampled; ++k) {
-            const size_t li = k < everyVertex.size() ? everyVertex[k] : picked;
-            const double selected = k < everyVertex.size() ? 1 : pickedProbability;
-            const Light& light = scene_.lights[li];
-            LightSample ls;
-            const auto [u, v] = rnd.pair(dimension::lightPair(k));
-            if (!sampleLight(light, path.hit.position, u, v, ls) || dot(ls.direction, ng) <= 0)
-                continue;
-            Vec3 wiLocal = frame.toLocal(ls.direction);
-            // Shared only towards distant lights, whose direction is the same for every
-            // sample; other lights are sampled per sample, and their pdf goes with their own f.
-            const bool shareLight = shareable && light.type == LightType::Distant;
-            Rgb f;
-            if (shareLight && shared_.lightValue[li].r >= 0) {
-                f = shared_.lightValue[li];
-            } else {
-                f = bsdf.evaluate(woLocal, wiLocal);
-                if (shareLight) shared_.lightValue[li] = f;
-            }
-            if (isBlack(f) || isBlack(ls.radiance)) continue;
-            Ray shadow{offsetOrigin(path.hit.position, ng, ls.direction), ls.direction};
-            double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
-            // MIS only if BSDF sampling can also find this light (not at the last vertex).
-            const double pdf = ls.pdf * selected;
-            double w = ls.delta || !continues ? 1 : powerHeuristic(pdf, bsdf.pdf(woLocal, wiLocal));
-            Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * w / pdf);
-            // Added by traceShadows if nothing blocks the light.
-            shadows_.push_back({index, shadow, tMax, multiply(path.throughput, contribution)});
-        }
-    }
+    // Next-event estimation: its shadow rays are traced with the others of this bounce.
+    directLight_.sample({path.hit.position, ng, &surface, woLocal, path.throughput,
+                         path.depth + 1 < settings.maxDepth},
+                        rnd, shareable ? std::span<Rgb>(shared_.lightValue) : std::span<Rgb>(),
+                        index, shadows_);
 
     // Continue the path.
     SurfaceBsdf::Sample bs;
