@@ -19,8 +19,10 @@
 #include "renderer/lights.h"
 #include "renderer/material_bsdf.h"
 #include "renderer/parallel_tiles.h"
+#include "renderer/path_state.h"
 #include "renderer/ray_scene.h"
 #include "renderer/sample_dimensions.h"
+#include "renderer/wood_hits.h"
 #include "shader/surface_bsdf.h"
 #include "util/axis_frame.h"
 #include "util/memory_budget.h"
@@ -31,58 +33,21 @@ namespace nenrin {
 namespace {
 
 constexpr int kTileSize = kRenderTileSize;
-/// A pixel whose shared wood evaluation is on a knot's edge (knot share between this and
-/// 1 - this) is shaded per sample.
-constexpr double kKnotRefinement = 0.02;
 constexpr uint32_t kSamplesPerPass = 64;
 constexpr double kRegularisedRoughness = 0.3;
 
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
 bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
 
-/// Share of a footprint of diameter `footprint` centred `distance` from the middle of a line
-/// of `width`: the box-filtered glue line, so it neither aliases nor vanishes far away.
-double glueCoverage(double distance, double width, double footprint) {
-    if (footprint <= 1e-3 * width) return distance <= 0.5 * width ? 1 : 0;
-    double overlap = std::min(distance + 0.5 * width, 0.5 * footprint) -
-                     std::max(distance - 0.5 * width, -0.5 * footprint);
-    return std::clamp(overlap / footprint, 0.0, 1.0);
-}
-
-struct PathState {
-    Ray ray;
-    /// Film position of the camera sample (pixels): its ray differentials are made again
-    /// from it where a footprint is needed, instead of being carried by every path.
-    double filmX = 0, filmY = 0;
-    Rgb throughput{1, 1, 1};
-    Rgb radiance;
-    uint32_t pixel = 0;  ///< index within the tile
-    uint32_t sample = 0;
-    int depth = 0;
-    double bsdfPdf = 0;  ///< density of the bounce that made the current ray (for MIS)
-    /// The vertex the current ray left and its geometric normal: where a light the ray finds
-    /// would have been selected from (MIS with light selection).
-    Vec3 lastPosition, lastNormal;
-    bool alive = true;
-    SurfaceHit hit;
-    // Shading inputs worked out per hit.
-    uint32_t material = 0;
-    int32_t lamella = -1;
-    Rgb boardTint{1, 1, 1};  ///< the board's tree (cut plan)
-    const RigidTransform* treeFromObject = nullptr;
-    const RigidTransform* worldFromObject = nullptr;
-    const GlueLine* glue = nullptr;  ///< laminated products
-    double glueDistance = 0;         ///< m, to the nearest glued boundary
-    double glueCover = 0;            ///< share of the footprint on the glue line
-    /// Path regularisation: after a diffuse bounce, glossy lobes are at least this rough, so
-    /// sun glints seen through diffuse bounces (caustics) blur instead of sparkling.
-    double minRoughness = 0;
-};
-
 class TileRenderer {
 public:
     TileRenderer(const Scene& scene, const RayScene& rays, const Camera& camera)
-        : scene_(scene), rays_(rays), camera_(camera), directLight_(scene) {}
+        : scene_(scene),
+          rays_(rays),
+          camera_(camera),
+          cameraSampler_(camera, scene.settings),
+          directLight_(scene),
+          woodHits_(scene, cameraSampler_) {}
 
     void render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats);
 
@@ -90,35 +55,22 @@ private:
     void traceCamera(std::vector<PathState>& paths);
     void resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
                      const std::vector<uint64_t>& pixelIds);
-    void shadeWood(std::vector<PathState>& paths, const std::vector<uint32_t>& woodPaths);
-    /// The camera ray of a path's sample, with its differentials.
-    CameraRay cameraRay(const PathState& path, uint64_t pixelId) const {
-        auto [lu, lv] = lensSample(path, pixelId);
-        return camera_.generate(path.filmX, path.filmY, lu, lv, differentialScale_);
-    }
-    /// The sample's point on the lens (a pinhole needs none).
-    std::pair<double, double> lensSample(const PathState& path, uint64_t pixelId) const {
-        if (!camera_.hasLens()) return {0, 0};
-        const uint64_t seed = scene_.settings.seed;
-        return pairAt(seed, pixelId, path.sample, dimension::kLens);
-    }
-    /// Fills groupResults_ (one per pixel) and groupStart_ for a camera batch of n entries.
-    void shadeCameraWood(const WoodShader& shader, size_t n);
-    void shade(uint32_t index, PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood,
-               TileAovs& aovs);
+    void shade(uint32_t index, PathState& path, uint64_t pixelId, TileAovs& aovs);
     void traceShadows(std::vector<PathState>& paths, TileAovs& aovs);
 
     const Scene& scene_;
     const RayScene& rays_;
     const Camera& camera_;
+    CameraSampler cameraSampler_;
     DirectLight directLight_;
+    WoodHits woodHits_;
     uint64_t rayCount_ = 0;
     // Scratch, reused by the tiles one thread renders (no allocation per tile).
     std::vector<PathState> paths_;
     std::vector<ShadowRay> shadows_;  ///< this bounce's light samples, in path order
     /// The shading state shared by the camera samples of one pixel and board face (shade).
     struct SharedSurface {
-        const WoodSurfaceSample* wood = nullptr;
+        WoodHits::Evaluation wood;  ///< the wood evaluation it was made from
         Vec3 ng;
         SurfaceShading surface;
         std::vector<Rgb> lightValue;  ///< BSDF value towards each distant light; r < 0: unknown
@@ -127,35 +79,13 @@ private:
     TileSampling sampling_;          ///< how many samples each pixel of the tile takes
     std::vector<uint64_t> pixelIds_;
     std::vector<double> rotations_;
-    std::vector<uint32_t> woodPathIds_, woodOrder_;
-    std::vector<WoodSurfaceSample> woodResults_;
-    std::vector<int32_t> woodSlot_;
-    WoodScratch woodScratch_;
-    std::vector<Vec3> woodPoints_;
-    std::vector<SurfaceFootprint> woodFootprints_;
-    std::vector<WoodSurfaceSample> woodBatch_;
-    std::vector<WoodSample> woodPlain_;
-    // Camera hits shaded once per pixel and board (shadeCameraWood).
-    std::vector<uint32_t> groupStart_;
-    std::vector<Vec3> groupPoints_;
-    std::vector<SurfaceFootprint> groupFootprints_;
-    std::vector<WoodSurfaceSample> groupResults_;
-    std::vector<uint32_t> batchPixel_;
-    std::vector<int32_t> refineEntries_;  ///< per batch entry: its quadrant evaluation, or -1
-    std::vector<int32_t> refineSlots_;
-    std::vector<Vec3> refinePoints_;
-    std::vector<SurfaceFootprint> refineFootprints_;
-    std::vector<WoodSurfaceSample> refineResults_;
-    double differentialScale_ = 1;
+    std::vector<uint32_t> woodPaths_;  ///< this bounce's paths on wood
 };
 
 void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats) {
     const RenderSettings& settings = scene_.settings;
     const int tw = x1 - x0, th = y1 - y0;
     const size_t pixels = size_t(tw) * th;
-    const uint32_t spp = static_cast<uint32_t>(settings.spp);
-    differentialScale_ = std::max(0.125, 1 / std::sqrt(double(spp)));
-
     rayCount_ = 0;
     std::vector<uint64_t>& pixelIds = pixelIds_;
     std::vector<double>& rotations = rotations_;
@@ -215,8 +145,7 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
                         jy -= std::floor(jy);
                         path.filmX = x0 + i + jx;
                         path.filmY = y0 + j + jy;
-                        auto [lu, lv] = lensSample(path, id);
-                        path.ray = camera_.primary(path.filmX, path.filmY, lu, lv);
+                        path.ray = cameraSampler_.primary(path, id);
                     }
                 }
             }
@@ -256,7 +185,7 @@ void TileRenderer::traceCamera(std::vector<PathState>& paths) {
 /// Surface points of the hits: where in the tree (wood), which board, and the footprint.
 void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
                                const std::vector<uint64_t>& pixelIds) {
-    std::vector<uint32_t>& woodPaths = woodPathIds_;
+    std::vector<uint32_t>& woodPaths = woodPaths_;
     woodPaths.clear();
     for (uint32_t i = 0; i < paths.size(); ++i) {
         PathState& path = paths[i];
@@ -281,15 +210,13 @@ void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
         }
         if (scene_.materials[path.material].type == MaterialType::Wood) woodPaths.push_back(i);
     }
-    shadeWood(paths, woodPaths);
-    shared_.wood = nullptr;  // results of earlier bounces may reuse these addresses
+    woodHits_.evaluate(paths, woodPaths, pixelIds);
     shadows_.clear();
     finished_.assign(paths.size(), 0);
     for (uint32_t i = 0; i < paths.size(); ++i) {
         PathState& path = paths[i];
         if (!path.alive) continue;
-        const WoodSurfaceSample* wood = woodSlot_[i] >= 0 ? &woodResults_[woodSlot_[i]] : nullptr;
-        shade(i, path, pixelIds[path.pixel], wood, aovs);
+        shade(i, path, pixelIds[path.pixel], aovs);
     }
     traceShadows(paths, aovs);
 }
@@ -312,190 +239,7 @@ void TileRenderer::traceShadows(std::vector<PathState>& paths, TileAovs& aovs) {
     }
 }
 
-void TileRenderer::shadeWood(std::vector<PathState>& paths,
-                             const std::vector<uint32_t>& woodPaths) {
-    woodSlot_.assign(paths.size(), -1);
-    woodResults_.clear();
-    // Coherent batches: by material, then board, then path order (pixel-major).
-    std::vector<uint32_t>& order = woodOrder_;
-    order.resize(woodPaths.size());
-    std::iota(order.begin(), order.end(), 0u);
-    auto before = [&](uint32_t a, uint32_t b) {
-        const PathState& pa = paths[woodPaths[a]];
-        const PathState& pb = paths[woodPaths[b]];
-        if (pa.material != pb.material) return pa.material < pb.material;
-        return pa.treeFromObject < pb.treeFromObject;
-    };
-    // Often one board fills the tile: then the order is already right.
-    if (!std::is_sorted(order.begin(), order.end(), before))
-        std::stable_sort(order.begin(), order.end(), before);
-    size_t begin = 0;
-    while (begin < order.size()) {
-        const PathState& first = paths[woodPaths[order[begin]]];
-        size_t end = begin + 1;
-        while (end < order.size()) {
-            const PathState& p = paths[woodPaths[order[end]]];
-            if (p.material != first.material || p.treeFromObject != first.treeFromObject) break;
-            ++end;
-        }
-        const WoodShader& shader = *scene_.materials[first.material].wood;
-        const RigidTransform treeFromWorld =
-            (*first.treeFromObject) * first.worldFromObject->inverse();
-        const bool camera = first.depth == 0;
-        size_t n = end - begin;
-        woodPoints_.resize(n);
-        woodFootprints_.resize(camera ? n : 0);
-        batchPixel_.resize(n);
-        // A camera sample's footprint: where the neighbouring pixels' rays (scaled to the
-        // sample's share of the pixel) meet the hit's plane.
-        auto footprintOf = [&](size_t k) -> SurfaceFootprint {
-            const PathState& p = paths[woodPaths[order[begin + k]]];
-            const Vec3& n0 = p.hit.geometricNormal;
-            auto onPlane = [&](const Ray& r) {
-                double den = dot(n0, r.direction);
-                if (std::abs(den) < 1e-12) return p.hit.position;
-                double t = dot(n0, p.hit.position - r.origin) / den;
-                return r.origin + r.direction * t;
-            };
-            CameraRay c = cameraRay(p, pixelIds_[p.pixel]);
-            return {treeFromWorld.vector(onPlane(c.rayX) - p.hit.position),
-                    treeFromWorld.vector(onPlane(c.rayY) - p.hit.position), 0,
-                    treeFromWorld.vector(n0)};
-        };
-        for (size_t k = 0; k < n; ++k) {
-            const PathState& p = paths[woodPaths[order[begin + k]]];
-            batchPixel_[k] = p.pixel;
-            woodPoints_[k] = treeFromWorld.point(p.hit.position);
-            // Footprints for the first sample of each pixel (shadeCameraWood) and for samples
-            // near glue lines.
-            if (camera && (k == 0 || batchPixel_[k] != batchPixel_[k - 1] || p.glue))
-                woodFootprints_[k] = footprintOf(k);
-        }
-        woodBatch_.resize(n);
-        if (camera) {
-            shadeCameraWood(shader, n);
-            // Knots are not prefiltered: a knot's rim would alias if a whole pixel took one
-            // evaluation, so pixels on a knot's edge are shaded per quarter pixel: each sample
-            // takes the evaluation of its quadrant (centroid, half-pixel footprint).
-            refineEntries_.assign(n, -1);
-            refinePoints_.clear();
-            refineFootprints_.clear();
-            const double half = 0.5 / differentialScale_;
-            for (size_t g = 0; g + 1 < groupStart_.size(); ++g) {
-                const double knot = groupResults_[g].knot;
-                const uint32_t g0 = groupStart_[g], g1 = groupStart_[g + 1];
-                if (knot <= kKnotRefinement || knot >= 1 - kKnotRefinement || g1 - g0 < 2) continue;
-                int32_t slotOfQuadrant[4] = {-1, -1, -1, -1};
-                uint32_t count[4] = {0, 0, 0, 0};
-                for (uint32_t k = g0; k < g1; ++k) {
-                    const PathState& p = paths[woodPaths[order[begin + k]]];
-                    int q = (p.filmX - std::floor(p.filmX) >= 0.5) +
-                            2 * (p.filmY - std::floor(p.filmY) >= 0.5);
-                    if (slotOfQuadrant[q] < 0) {
-                        slotOfQuadrant[q] = static_cast<int32_t>(refinePoints_.size());
-                        refinePoints_.push_back({0, 0, 0});
-                        refineFootprints_.push_back({woodFootprints_[g0].dpdx * half,
-                                                     woodFootprints_[g0].dpdy * half, 0,
-                                                     woodFootprints_[g0].normal});
-                    }
-                    Vec3& sum = refinePoints_[static_cast<size_t>(slotOfQuadrant[q])];
-                    sum = sum + woodPoints_[k];
-                    ++count[q];
-                    refineEntries_[k] = slotOfQuadrant[q];
-                }
-                for (int q = 0; q < 4; ++q)
-                    if (count[q] > 0) {
-                        Vec3& sum = refinePoints_[static_cast<size_t>(slotOfQuadrant[q])];
-                        sum = sum * (1.0 / count[q]);
-                    }
-            }
-            refineResults_.resize(refinePoints_.size());
-            if (!refinePoints_.empty())
-                shader.evaluateSurface(refinePoints_, refineFootprints_, refineResults_,
-                                       woodScratch_);
-        } else {
-            woodPlain_.resize(n);
-            shader.evaluate(woodPoints_, woodPlain_, woodScratch_.growth, woodScratch_.samples);
-            for (size_t k = 0; k < n; ++k) {
-                WoodSurfaceSample& w = woodBatch_[k];
-                w = WoodSurfaceSample{};
-                w.albedo = woodPlain_[k].albedo;
-                w.coverage = woodPlain_[k].coverage;
-                w.T = woodPlain_[k].T;
-                w.knot = woodPlain_[k].knot;
-            }
-        }
-        const RigidTransform worldFromTree = treeFromWorld.inverse();
-        for (size_t k = 0; k < n; ++k) {
-            PathState& p = paths[woodPaths[order[begin + k]]];
-            if (p.glue) {
-                double footprint = 0;
-                if (camera)
-                    footprint = std::sqrt(std::max(lengthSquared(woodFootprints_[k].dpdx),
-                                                   lengthSquared(woodFootprints_[k].dpdy)));
-                p.glueCover = glueCoverage(p.glueDistance, p.glue->width, footprint);
-            }
-        }
-        // Results in world space (directions back from tree space), one per camera pixel
-        // group or per indirect hit; each path points at its result.
-        auto keep = [&](WoodSurfaceSample w) {
-            w.fibre = worldFromTree.vector(w.fibre);
-            w.reliefGradient = worldFromTree.vector(w.reliefGradient);
-            woodResults_.push_back(w);
-            return static_cast<int32_t>(woodResults_.size() - 1);
-        };
-        if (camera) {
-            // Quadrant results first, so each is kept once.
-            refineSlots_.resize(refineResults_.size());
-            for (size_t r = 0; r < refineResults_.size(); ++r)
-                refineSlots_[r] = keep(refineResults_[r]);
-            for (size_t g = 0; g + 1 < groupStart_.size(); ++g) {
-                const uint32_t g0 = groupStart_[g], g1 = groupStart_[g + 1];
-                const bool refined = refineEntries_[g0] >= 0;
-                int32_t slot = refined ? -1 : keep(groupResults_[g]);
-                for (uint32_t k = g0; k < g1; ++k)
-                    woodSlot_[woodPaths[order[begin + k]]] =
-                        refined ? refineSlots_[static_cast<size_t>(refineEntries_[k])] : slot;
-            }
-        } else {
-            for (size_t k = 0; k < n; ++k)
-                woodSlot_[woodPaths[order[begin + k]]] = keep(woodBatch_[k]);
-        }
-        begin = end;
-    }
-}
-
-/// The wood seen by camera samples is shaded once per pixel and board: at the mean of the
-/// samples' tree-space points, filtered over the whole pixel's footprint (the per-sample
-/// differentials are 1 / differentialScale_ shorter). The ring profile is prefiltered over
-/// that footprint, so this is the pixel's box-filtered wood, as the mean of the samples' own
-/// (smaller-footprint) evaluations would be, at 1/spp of the cost. Light, visibility and
-/// geometry stay sampled per sample. Batch entries of one pixel are adjacent (pixel-major).
-void TileRenderer::shadeCameraWood(const WoodShader& shader, size_t n) {
-    groupStart_.clear();
-    groupPoints_.clear();
-    groupFootprints_.clear();
-    const double widen = 1 / differentialScale_;
-    for (size_t k = 0; k < n; ++k) {
-        if (k == 0 || batchPixel_[k] != batchPixel_[k - 1]) {
-            groupStart_.push_back(static_cast<uint32_t>(k));
-            groupPoints_.push_back({0, 0, 0});
-            groupFootprints_.push_back({woodFootprints_[k].dpdx * widen,
-                                        woodFootprints_[k].dpdy * widen, 0,
-                                        woodFootprints_[k].normal});
-        }
-        groupPoints_.back() = groupPoints_.back() + woodPoints_[k];
-    }
-    groupStart_.push_back(static_cast<uint32_t>(n));
-    const size_t groups = groupPoints_.size();
-    for (size_t g = 0; g < groups; ++g)
-        groupPoints_[g] = groupPoints_[g] * (1.0 / (groupStart_[g + 1] - groupStart_[g]));
-    groupResults_.resize(groups);
-    shader.evaluateSurface(groupPoints_, groupFootprints_, groupResults_, woodScratch_);
-}
-
-void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
-                         const WoodSurfaceSample* wood, TileAovs& aovs) {
+void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId, TileAovs& aovs) {
     const RenderSettings& settings = scene_.settings;
     const BounceRandom rnd(settings.seed, pixelId, path.sample, path.depth);
     const Vec3 wo = -path.ray.direction;
@@ -530,6 +274,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
 
     // The surface: normals facing the incoming ray.
     const Material& material = scene_.materials[path.material];
+    const WoodSurfaceSample* wood = woodHits_.at(index);
     Vec3 ng = path.hit.geometricNormal;
     Vec3 ns = path.hit.shadingNormal;
     if (dot(ng, wo) < 0) ng = -ng;
@@ -541,7 +286,8 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
     // pixel's spread of view directions. Each sample keeps its own light sample and shadow ray.
     const bool shareable = camera && material.type == MaterialType::Wood && wood != nullptr &&
                            !(path.glue && path.glueCover > 0);
-    const bool reuse = shareable && shared_.wood == wood && shared_.ng == ng;
+    const WoodHits::Evaluation evaluation = woodHits_.evaluation(index);
+    const bool reuse = shareable && shared_.wood == evaluation && shared_.ng == ng;
     SurfaceShading surface;
     if (reuse) {
         surface = shared_.surface;
@@ -549,7 +295,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
         surface = materialBsdf(material, {&path.hit, wo, ns, wood, path.boardTint, path.glue,
                                           path.glueCover, path.minRoughness});
         if (shareable) {
-            shared_.wood = wood;
+            shared_.wood = evaluation;
             shared_.ng = ng;
             shared_.surface = surface;
             shared_.lightValue.assign(scene_.lights.size(), Rgb{-1, -1, -1});
