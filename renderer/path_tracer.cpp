@@ -4,13 +4,11 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <limits>
-#include <numeric>
+#include <span>
 #include <stdexcept>
-#include <utility>
+#include <vector>
 
 #include "renderer/adaptive_sampling.h"
 #include "renderer/camera.h"
@@ -39,6 +37,8 @@ constexpr double kRegularisedRoughness = 0.3;
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
 bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
 
+/// Renders tiles: one per thread, its buffers serving every tile the thread renders (no
+/// allocation per tile).
 class TileRenderer {
 public:
     TileRenderer(const Scene& scene, const RayScene& rays, const Camera& camera)
@@ -52,11 +52,23 @@ public:
     void render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats);
 
 private:
-    void traceCamera(std::vector<PathState>& paths);
-    void resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
-                     const std::vector<uint64_t>& pixelIds);
-    void shade(uint32_t index, PathState& path, uint64_t pixelId, TileAovs& aovs);
-    void traceShadows(std::vector<PathState>& paths, TileAovs& aovs);
+    void startTile(int x0, int y0, int x1, int y1);
+    void startCameraPaths(uint32_t k0);
+    void traceCamera();
+    void shadeBounce(TileAovs& aovs);
+    void locateBoards();
+    void shade(uint32_t index, PathState& path, TileAovs& aovs);
+    void addEmission(PathState& path, TileAovs& aovs) const;
+    SurfaceShading sharedSurface(uint32_t index, const Material& material, const MaterialHit& at,
+                                 const Vec3& ng);
+    bool bounce(PathState& path, const SurfaceShading& surface, const Vec3& ng, const Vec3& woLocal,
+                const BounceRandom& random) const;
+    void finish(uint32_t index, PathState& path) {
+        path.alive = false;
+        finished_[index] = 1;
+    }
+    void traceShadows(TileAovs& aovs);
+    bool traceContinuing();
 
     const Scene& scene_;
     const RayScene& rays_;
@@ -64,10 +76,17 @@ private:
     CameraSampler cameraSampler_;
     DirectLight directLight_;
     WoodHits woodHits_;
+    // The tile being rendered.
+    int x0_ = 0, y0_ = 0, tw_ = 0, th_ = 0;
+    std::vector<uint64_t> pixelIds_;  ///< per pixel of the tile: its index in the image
+    std::vector<double> rotations_;   ///< per pixel of the tile: its jitter rotation (x, y)
+    TileSampling sampling_;           ///< how many samples each pixel of the tile takes
     uint64_t rayCount_ = 0;
-    // Scratch, reused by the tiles one thread renders (no allocation per tile).
+    // The pass: its paths, and what their current bounce found.
     std::vector<PathState> paths_;
-    std::vector<ShadowRay> shadows_;  ///< this bounce's light samples, in path order
+    std::vector<uint32_t> woodPaths_;  ///< the paths on wood
+    std::vector<ShadowRay> shadows_;   ///< the light samples, in path order
+    std::vector<uint8_t> finished_;    ///< the paths that ended
     /// The shading state shared by the camera samples of one pixel and board face (shade).
     struct SharedSurface {
         WoodHits::Evaluation wood;  ///< the wood evaluation it was made from
@@ -75,120 +94,142 @@ private:
         SurfaceShading surface;
         std::vector<Rgb> lightValue;  ///< BSDF value towards each distant light; r < 0: unknown
     } shared_;
-    std::vector<uint8_t> finished_;  ///< paths that ended this bounce
-    TileSampling sampling_;          ///< how many samples each pixel of the tile takes
-    std::vector<uint64_t> pixelIds_;
-    std::vector<double> rotations_;
-    std::vector<uint32_t> woodPaths_;  ///< this bounce's paths on wood
 };
 
 void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats) {
-    const RenderSettings& settings = scene_.settings;
-    const int tw = x1 - x0, th = y1 - y0;
-    const size_t pixels = size_t(tw) * th;
-    rayCount_ = 0;
-    std::vector<uint64_t>& pixelIds = pixelIds_;
-    std::vector<double>& rotations = rotations_;
-    pixelIds.resize(pixels);
-    rotations.resize(2 * pixels);
-    for (int j = 0; j < th; ++j) {
-        for (int i = 0; i < tw; ++i) {
-            uint32_t p = static_cast<uint32_t>(j * tw + i);
-            uint64_t id = uint64_t(y0 + j) * settings.width + (x0 + i);
-            pixelIds[p] = id;
-            // Pixel jitter: the R2 sequence over the samples, rotated per pixel.
-            rotations[2 * p] =
-                randomAt(settings.seed, id, dimension::kPixelSample, dimension::kJitterRotationX);
-            rotations[2 * p + 1] =
-                randomAt(settings.seed, id, dimension::kPixelSample, dimension::kJitterRotationY);
-        }
-    }
-
-    TileAovs aovs(pixels);
-    sampling_.start(tw, th, settings);
-    const std::vector<uint32_t>& done = sampling_.samplesDone();
-    const std::vector<uint32_t>& target = sampling_.samplesTarget();
-    std::vector<PathState>& paths = paths_;
+    startTile(x0, y0, x1, y1);
+    TileAovs aovs(pixelIds_.size());
+    sampling_.start(tw_, th_, scene_.settings);
     // Rounds of samples (one without adaptive sampling), each in passes of at most
     // kSamplesPerPass samples per pixel, which bounds memory at any spp; each pixel still adds
     // its samples in order, so sums are deterministic.
     while (const uint32_t longest = sampling_.longestRound()) {
         for (uint32_t k0 = 0; k0 < longest; k0 += kSamplesPerPass) {
-            size_t count = 0;
-            for (size_t p = 0; p < pixels; ++p)
-                count += std::min(target[p] - done[p] - std::min(target[p] - done[p], k0),
-                                  kSamplesPerPass);
-            // Only the fields a new camera path needs are reset: the state is large, and
-            // resetting all of it for every sample was a measurable share of a render.
-            paths.resize(count);
-            size_t next = 0;
-            for (int j = 0; j < th; ++j) {
-                for (int i = 0; i < tw; ++i) {
-                    uint32_t p = static_cast<uint32_t>(j * tw + i);
-                    uint64_t id = pixelIds[p];
-                    const uint32_t s0 = done[p] + k0;
-                    const uint32_t s1 = std::min(target[p], s0 + kSamplesPerPass);
-                    for (uint32_t s = s0; s < s1; ++s) {
-                        PathState& path = paths[next++];
-                        path.throughput = {1, 1, 1};
-                        path.radiance = {};
-                        path.depth = 0;
-                        path.bsdfPdf = 0;
-                        path.alive = true;
-                        path.minRoughness = 0;
-                        path.glue = nullptr;
-                        path.pixel = p;
-                        path.sample = s;
-                        double jx = rotations[2 * p] + s * 0.7548776662466927;
-                        double jy = rotations[2 * p + 1] + s * 0.5698402909980532;
-                        jx -= std::floor(jx);
-                        jy -= std::floor(jy);
-                        path.filmX = x0 + i + jx;
-                        path.filmY = y0 + j + jy;
-                        path.ray = cameraSampler_.primary(path, id);
-                    }
-                }
-            }
-            traceCamera(paths);
-            while (true) {
-                resolveHits(paths, aovs, pixelIds);
-                bool any = false;
-                for (PathState& path : paths) {
-                    if (!path.alive) continue;
-                    any = true;
-                    path.hit = rays_.intersect(path.ray);
-                    ++rayCount_;
-                }
-                if (!any) break;
-            }
+            startCameraPaths(k0);
+            traceCamera();
+            do shadeBounce(aovs);
+            while (traceContinuing());
         }
         sampling_.endRound(aovs.rgb);
     }
-
-    aovs.writeInto(film, x0, y0, tw, th, done);
-    for (size_t p = 0; p < pixels; ++p) stats.cameraRays += done[p];
+    const std::vector<uint32_t>& done = sampling_.samplesDone();
+    aovs.writeInto(film, x0, y0, tw_, th_, done);
+    for (size_t p = 0; p < done.size(); ++p) stats.cameraRays += done[p];
     stats.rays += rayCount_;
 }
 
-void TileRenderer::traceCamera(std::vector<PathState>& paths) {
-    Ray rays[16];
-    SurfaceHit hits[16];
-    for (size_t base = 0; base < paths.size(); base += 16) {
-        int count = static_cast<int>(std::min<size_t>(16, paths.size() - base));
-        for (int k = 0; k < count; ++k) rays[k] = paths[base + k].ray;
-        rays_.intersect16(rays, count, hits);
-        for (int k = 0; k < count; ++k) paths[base + k].hit = hits[k];
+/// The tile's pixels: their image indices and jitter rotations.
+void TileRenderer::startTile(int x0, int y0, int x1, int y1) {
+    const RenderSettings& settings = scene_.settings;
+    x0_ = x0;
+    y0_ = y0;
+    tw_ = x1 - x0;
+    th_ = y1 - y0;
+    const size_t pixels = size_t(tw_) * th_;
+    rayCount_ = 0;
+    pixelIds_.resize(pixels);
+    rotations_.resize(2 * pixels);
+    for (int j = 0; j < th_; ++j) {
+        for (int i = 0; i < tw_; ++i) {
+            uint32_t p = static_cast<uint32_t>(j * tw_ + i);
+            uint64_t id = uint64_t(y0 + j) * settings.width + (x0 + i);
+            pixelIds_[p] = id;
+            // Pixel jitter: the R2 sequence over the samples, rotated per pixel.
+            rotations_[2 * p] =
+                randomAt(settings.seed, id, dimension::kPixelSample, dimension::kJitterRotationX);
+            rotations_[2 * p + 1] =
+                randomAt(settings.seed, id, dimension::kPixelSample, dimension::kJitterRotationY);
+        }
     }
-    rayCount_ += paths.size();
 }
 
-/// Surface points of the hits: where in the tree (wood), which board, and the footprint.
-void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
-                               const std::vector<uint64_t>& pixelIds) {
-    std::vector<uint32_t>& woodPaths = woodPaths_;
-    woodPaths.clear();
-    for (uint32_t i = 0; i < paths.size(); ++i) {
-        PathState& path = paths[i];
+/// The camera paths of the pass that starts k0 samples into this round: up to kSamplesPerPass
+/// per pixel, pixel by pixel.
+void TileRenderer::startCameraPaths(uint32_t k0) {
+    const std::vector<uint32_t>& done = sampling_.samplesDone();
+    const std::vector<uint32_t>& target = sampling_.samplesTarget();
+    size_t count = 0;
+    for (size_t p = 0; p < done.size(); ++p)
+        count += std::min(target[p] - done[p] - std::min(target[p] - done[p], k0), kSamplesPerPass);
+    // Only the fields a new camera path needs are reset: the state is large, and resetting all
+    // of it for every sample was a measurable share of a render.
+    paths_.resize(count);
+    size_t next = 0;
+    for (int j = 0; j < th_; ++j) {
+        for (int i = 0; i < tw_; ++i) {
+            uint32_t p = static_cast<uint32_t>(j * tw_ + i);
+            uint64_t id = pixelIds_[p];
+            const uint32_t s0 = done[p] + k0;
+            const uint32_t s1 = std::min(target[p], s0 + kSamplesPerPass);
+            for (uint32_t s = s0; s < s1; ++s) {
+                PathState& path = paths_[next++];
+                path.throughput = {1, 1, 1};
+                path.radiance = {};
+                path.depth = 0;
+                path.bsdfPdf = 0;
+                path.alive = true;
+                path.minRoughness = 0;
+                path.glue = nullptr;
+                path.pixel = p;
+                path.sample = s;
+                double jx = rotations_[2 * p] + s * 0.7548776662466927;
+                double jy = rotations_[2 * p + 1] + s * 0.5698402909980532;
+                jx -= std::floor(jx);
+                jy -= std::floor(jy);
+                path.filmX = x0_ + i + jx;
+                path.filmY = y0_ + j + jy;
+                path.ray = cameraSampler_.primary(path, id);
+            }
+        }
+    }
+}
+
+/// The camera rays, in packets of 16.
+void TileRenderer::traceCamera() {
+    Ray rays[16];
+    SurfaceHit hits[16];
+    for (size_t base = 0; base < paths_.size(); base += 16) {
+        int count = static_cast<int>(std::min<size_t>(16, paths_.size() - base));
+        for (int k = 0; k < count; ++k) rays[k] = paths_[base + k].ray;
+        rays_.intersect16(rays, count, hits);
+        for (int k = 0; k < count; ++k) paths_[base + k].hit = hits[k];
+    }
+    rayCount_ += paths_.size();
+}
+
+/// The rays of the paths that go on; false if none does.
+bool TileRenderer::traceContinuing() {
+    bool any = false;
+    for (PathState& path : paths_) {
+        if (!path.alive) continue;
+        any = true;
+        path.hit = rays_.intersect(path.ray);
+        ++rayCount_;
+    }
+    return any;
+}
+
+/// One bounce of every live path: what each hit is on, the wood there (in coherent batches),
+/// then each vertex shaded, its light samples traced together.
+void TileRenderer::shadeBounce(TileAovs& aovs) {
+    locateBoards();
+    woodHits_.evaluate(paths_, woodPaths_, pixelIds_);
+    shadows_.clear();
+    finished_.assign(paths_.size(), 0);
+    for (uint32_t i = 0; i < paths_.size(); ++i) {
+        PathState& path = paths_[i];
+        if (!path.alive) continue;
+        shade(i, path, aovs);
+    }
+    traceShadows(aovs);
+}
+
+/// What the surface hits are on: the object's material, and in laminated products the board
+/// (its tree, tint and lamella id) and the distance to the glue line. Collects woodPaths_.
+void TileRenderer::locateBoards() {
+    woodPaths_.clear();
+    for (uint32_t i = 0; i < paths_.size(); ++i) {
+        PathState& path = paths_[i];
         if (!path.alive || !path.hit.hit || path.hit.isLight) continue;
         const SceneObject& object = scene_.objects[path.hit.index];
         path.material = object.material;
@@ -208,28 +249,19 @@ void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
                 path.glueDistance = object.layout->glueDistance(local);
             }
         }
-        if (scene_.materials[path.material].type == MaterialType::Wood) woodPaths.push_back(i);
+        if (scene_.materials[path.material].type == MaterialType::Wood) woodPaths_.push_back(i);
     }
-    woodHits_.evaluate(paths, woodPaths, pixelIds);
-    shadows_.clear();
-    finished_.assign(paths.size(), 0);
-    for (uint32_t i = 0; i < paths.size(); ++i) {
-        PathState& path = paths[i];
-        if (!path.alive) continue;
-        shade(i, path, pixelIds[path.pixel], aovs);
-    }
-    traceShadows(paths, aovs);
 }
 
 /// The light samples of this bounce, in 16-ray packets; then, in path order, each path gets its
 /// unoccluded contributions (in light order) and finished paths go into the film: the same
 /// sums in the same order as tracing each shadow ray where it was made.
-void TileRenderer::traceShadows(std::vector<PathState>& paths, TileAovs& aovs) {
+void TileRenderer::traceShadows(TileAovs& aovs) {
     traceShadowRays(rays_, shadows_);
     rayCount_ += shadows_.size();
     size_t next = 0;
-    for (uint32_t i = 0; i < paths.size(); ++i) {
-        PathState& path = paths[i];
+    for (uint32_t i = 0; i < paths_.size(); ++i) {
+        PathState& path = paths_[i];
         for (; next < shadows_.size() && shadows_[next].path == i; ++next)
             if (!shadows_[next].blocked)
                 path.radiance = path.radiance + shadows_[next].contribution;
@@ -239,38 +271,16 @@ void TileRenderer::traceShadows(std::vector<PathState>& paths, TileAovs& aovs) {
     }
 }
 
-void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId, TileAovs& aovs) {
-    const RenderSettings& settings = scene_.settings;
-    const BounceRandom rnd(settings.seed, pixelId, path.sample, path.depth);
-    const Vec3 wo = -path.ray.direction;
-    const bool camera = path.depth == 0;
-
+/// One path vertex: the light the ray found by itself, or a surface: its BSDF (the material
+/// step), next-event estimation, and the bounce that continues the path.
+void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
     if (!path.hit.hit || path.hit.isLight) {
-        Rgb le;
-        double lightPdf = 0;
-        if (!path.hit.hit) {
-            le = directLight_.environmentRadiance(path.ray.direction);
-            if (!camera)
-                lightPdf = directLight_.environmentPdf(path.ray.direction, path.lastPosition,
-                                                       path.lastNormal);
-        } else {
-            const Light& l = scene_.lights[path.hit.index];
-            le = rectLightRadiance(l, path.ray.direction);
-            if (!camera)
-                lightPdf =
-                    directLight_.rectPdf(path.hit.index, path.ray.direction, path.hit.distance,
-                                         path.lastPosition, path.lastNormal);
-            if (camera)
-                aovs.addEmitterHit(path.pixel,
-                                   path.hit.distance * dot(path.ray.direction, camera_.forward()),
-                                   path.hit.geometricNormal);
-        }
-        double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
-        path.radiance = path.radiance + multiply(path.throughput, le) * w;
-        path.alive = false;
-        finished_[index] = 1;
+        addEmission(path, aovs);
+        finish(index, path);
         return;
     }
+    const Vec3 wo = -path.ray.direction;
+    const bool camera = path.depth == 0;
 
     // The surface: normals facing the incoming ray.
     const Material& material = scene_.materials[path.material];
@@ -279,75 +289,114 @@ void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId, Tile
     Vec3 ns = path.hit.shadingNormal;
     if (dot(ng, wo) < 0) ng = -ng;
     if (dot(ns, ng) < 0) ns = -ns;
-
+    const MaterialHit at{.hit = &path.hit,
+                         .wo = wo,
+                         .ns = ns,
+                         .wood = wood,
+                         .boardTint = path.boardTint,
+                         .glue = path.glue,
+                         .glueCover = path.glueCover,
+                         .minRoughness = path.minRoughness};
     // Camera samples of one pixel that see the same board face share its shading state: the
-    // wood was evaluated once for them (shadeCameraWood), so the layered BSDF, the bumped normal
-    // and the frame are the same; so is the BSDF's value towards a distant light, up to the
+    // wood was evaluated once for them (WoodHits), so the layered BSDF, the bumped normal and
+    // the frame are the same; so is the BSDF's value towards a distant light, up to the
     // pixel's spread of view directions. Each sample keeps its own light sample and shadow ray.
     const bool shareable = camera && material.type == MaterialType::Wood && wood != nullptr &&
                            !(path.glue && path.glueCover > 0);
-    const WoodHits::Evaluation evaluation = woodHits_.evaluation(index);
-    const bool reuse = shareable && shared_.wood == evaluation && shared_.ng == ng;
-    SurfaceShading surface;
-    if (reuse) {
-        surface = shared_.surface;
-    } else {
-        surface = materialBsdf(material, {&path.hit, wo, ns, wood, path.boardTint, path.glue,
-                                          path.glueCover, path.minRoughness});
-        if (shareable) {
-            shared_.wood = evaluation;
-            shared_.ng = ng;
-            shared_.surface = surface;
-            shared_.lightValue.assign(scene_.lights.size(), Rgb{-1, -1, -1});
-        }
-    }
-    const SurfaceBsdf& bsdf = surface.bsdf;
-    const AxisFrame& frame = surface.frame;
-    ns = surface.ns;
-    const Vec3 woLocal = frame.toLocal(wo);
+    const SurfaceShading surface =
+        shareable ? sharedSurface(index, material, at, ng) : materialBsdf(material, at);
+    const Vec3 woLocal = surface.frame.toLocal(wo);
 
     if (camera) {
-        aovs.addSurfaceHit(path.pixel, bsdf.base, ns,
+        aovs.addSurfaceHit(path.pixel, surface.bsdf.base, surface.ns,
                            path.hit.distance * dot(path.ray.direction, camera_.forward()));
         if (wood) aovs.addWoodHit(path.pixel, wood->T, wood->knot);
         if (path.sample == 0) aovs.lamella[path.pixel] = path.lamella;
     }
 
     // Next-event estimation: its shadow rays are traced with the others of this bounce.
-    directLight_.sample({path.hit.position, ng, &surface, woLocal, path.throughput,
-                         path.depth + 1 < settings.maxDepth},
-                        rnd, shareable ? std::span<Rgb>(shared_.lightValue) : std::span<Rgb>(),
-                        index, shadows_);
+    const BounceRandom random(scene_.settings.seed, pixelIds_[path.pixel], path.sample, path.depth);
+    const LitVertex vertex{.position = path.hit.position,
+                           .ng = ng,
+                           .surface = &surface,
+                           .woLocal = woLocal,
+                           .throughput = path.throughput,
+                           .continues = path.depth + 1 < scene_.settings.maxDepth};
+    directLight_.sample(vertex, random,
+                        shareable ? std::span<Rgb>(shared_.lightValue) : std::span<Rgb>(), index,
+                        shadows_);
 
-    // Continue the path.
+    if (!bounce(path, surface, ng, woLocal, random)) finish(index, path);
+}
+
+/// Light the path's ray found by itself: the environment or a rectangle light's face. Past the
+/// camera it is weighed against next-event estimation at the vertex the ray left (MIS).
+void TileRenderer::addEmission(PathState& path, TileAovs& aovs) const {
+    const bool camera = path.depth == 0;
+    Rgb le;
+    double lightPdf = 0;
+    if (!path.hit.hit) {
+        le = directLight_.environmentRadiance(path.ray.direction);
+        if (!camera)
+            lightPdf =
+                directLight_.environmentPdf(path.ray.direction, path.lastPosition, path.lastNormal);
+    } else {
+        const Light& l = scene_.lights[path.hit.index];
+        le = rectLightRadiance(l, path.ray.direction);
+        if (!camera)
+            lightPdf = directLight_.rectPdf(path.hit.index, path.ray.direction, path.hit.distance,
+                                            path.lastPosition, path.lastNormal);
+        if (camera)
+            aovs.addEmitterHit(path.pixel,
+                               path.hit.distance * dot(path.ray.direction, camera_.forward()),
+                               path.hit.geometricNormal);
+    }
+    double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
+    path.radiance = path.radiance + multiply(path.throughput, le) * w;
+}
+
+/// The material step for a camera sample that may share it with the pixel's samples before it
+/// (shade): made again only when the wood evaluation or the face changes.
+SurfaceShading TileRenderer::sharedSurface(uint32_t index, const Material& material,
+                                           const MaterialHit& at, const Vec3& ng) {
+    const WoodHits::Evaluation evaluation = woodHits_.evaluation(index);
+    if (shared_.wood == evaluation && shared_.ng == ng) return shared_.surface;
+    shared_.wood = evaluation;
+    shared_.ng = ng;
+    shared_.surface = materialBsdf(material, at);
+    shared_.lightValue.assign(scene_.lights.size(), Rgb{-1, -1, -1});
+    return shared_.surface;
+}
+
+/// Continues the path in a direction sampled from the BSDF, with Russian roulette from the
+/// third vertex on; false if the path ends here.
+bool TileRenderer::bounce(PathState& path, const SurfaceShading& surface, const Vec3& ng,
+                          const Vec3& woLocal, const BounceRandom& random) const {
     SurfaceBsdf::Sample bs;
-    bool more = path.depth + 1 < settings.maxDepth && [&] {
-        const auto [u, v] = rnd.pair(dimension::kBsdfDirection);
-        return bsdf.sample(woLocal, rnd.at(dimension::kBsdfLobe), u, v, bs);
+    bool more = path.depth + 1 < scene_.settings.maxDepth && [&] {
+        const auto [u, v] = random.pair(dimension::kBsdfDirection);
+        return surface.bsdf.sample(woLocal, random.at(dimension::kBsdfLobe), u, v, bs);
     }();
-    Vec3 wi = more ? frame.toWorld(bs.wi) : Vec3{};
+    Vec3 wi = more ? surface.frame.toWorld(bs.wi) : Vec3{};
     if (more && dot(wi, ng) <= 0) more = false;
     if (more) {
         path.throughput = multiply(path.throughput, bs.weight);
         if (path.depth >= 2) {
             double q = std::min(0.95, maxComponent(path.throughput));
-            if (rnd.at(dimension::kRoulette) >= q)
+            if (random.at(dimension::kRoulette) >= q)
                 more = false;
             else
                 path.throughput = path.throughput * (1 / q);
         }
     }
-    if (!more || isBlack(path.throughput)) {
-        path.alive = false;
-        finished_[index] = 1;
-        return;
-    }
+    if (!more || isBlack(path.throughput)) return false;
     path.bsdfPdf = bs.pdf;
     path.lastPosition = path.hit.position;
     path.lastNormal = ng;
     if (bs.roughness >= 1) path.minRoughness = kRegularisedRoughness;
     path.ray = {offsetOrigin(path.hit.position, ng, wi), wi};
     ++path.depth;
+    return true;
 }
 
 }  // namespace
