@@ -45,7 +45,8 @@ public:
     Evaluation evaluation(uint32_t path) const { return {round_, slot_[path]}; }
 
 private:
-    /// Entries [0, n) of the scratch below: hits of one material and board.
+    /// The hits on one material and board, in path order: entry k's scratch below (points_,
+    /// footprints_, pixel_, ...) is at index k.
     struct Batch {
         std::span<PathState> paths;
         std::span<const uint32_t> entries;  ///< index into paths of each entry
