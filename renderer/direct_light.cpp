@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderer/lights.h"
-
 namespace nenrin {
 
 namespace {
@@ -59,24 +57,6 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
         Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * weight / pdf);
         out.push_back({path, shadow, tMax, multiply(v.throughput, contribution)});
     }
-}
-
-Rgb DirectLight::environmentRadiance(const Vec3& direction) const {
-    return env_ ? env_->environment->radiance(direction) : Rgb{};
-}
-
-double DirectLight::environmentPdf(const Vec3& direction, const Vec3& from,
-                                   const Vec3& fromNormal) const {
-    if (!env_) return 0;
-    return env_->environment->pdf(direction) *
-           selection_.probability(static_cast<size_t>(env_ - scene_.lights.data()), from,
-                                  fromNormal);
-}
-
-double DirectLight::rectPdf(uint32_t light, const Vec3& direction, double distance,
-                            const Vec3& from, const Vec3& fromNormal) const {
-    return rectLightPdf(scene_.lights[light], direction, distance) *
-           selection_.probability(light, from, fromNormal);
 }
 
 void traceShadowRays(const RayScene& rays, std::span<ShadowRay> shadows) {

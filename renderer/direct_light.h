@@ -12,6 +12,7 @@
 
 #include "grain/rgb.h"
 #include "renderer/light_selection.h"
+#include "renderer/lights.h"
 #include "renderer/material_bsdf.h"
 #include "renderer/ray_scene.h"
 #include "renderer/sample_dimensions.h"
@@ -51,21 +52,33 @@ public:
     explicit DirectLight(const Scene& scene);
 
     /// Appends the shadow rays of next-event estimation at `v` (path `path`) to `out`, in light
-    /// order; none if wo is below the shading surface. `distantValues`: the BSDF's values
-    /// towards the scene's distant lights, shared by samples with the same BSDF and (up to a
-    /// pixel's spread) the same wo: r < 0 unknown yet; empty: nothing shared.
+    /// order; none if wo is below the shading surface. `distantValues`, one per scene light:
+    /// the BSDF's values towards the distant ones, shared by samples with the same BSDF and (up
+    /// to a pixel's spread) the same wo; r < 0: not known yet. Empty: nothing shared.
     void sample(const LitVertex& v, const BounceRandom& random, std::span<Rgb> distantValues,
                 uint32_t path, std::vector<ShadowRay>& out);
 
+    // Inline: every path that leaves the scene or finds a light asks (MIS).
+
     /// Radiance from the environment along a ray that leaves the scene (black without one).
-    Rgb environmentRadiance(const Vec3& direction) const;
+    Rgb environmentRadiance(const Vec3& direction) const {
+        return env_ ? env_->environment->radiance(direction) : Rgb{};
+    }
     /// Density (solid angle) with which next-event estimation at (from, fromNormal) samples
     /// `direction` on the environment, selection included.
-    double environmentPdf(const Vec3& direction, const Vec3& from, const Vec3& fromNormal) const;
+    double environmentPdf(const Vec3& direction, const Vec3& from, const Vec3& fromNormal) const {
+        if (!env_) return 0;
+        return env_->environment->pdf(direction) *
+               selection_.probability(static_cast<size_t>(env_ - scene_.lights.data()), from,
+                                      fromNormal);
+    }
     /// Density (solid angle) with which next-event estimation at (from, fromNormal) samples the
     /// point at `distance` along `direction` on rectangle light `light`, selection included.
     double rectPdf(uint32_t light, const Vec3& direction, double distance, const Vec3& from,
-                   const Vec3& fromNormal) const;
+                   const Vec3& fromNormal) const {
+        return rectLightPdf(scene_.lights[light], direction, distance) *
+               selection_.probability(light, from, fromNormal);
+    }
 
 private:
     const Scene& scene_;

@@ -54,7 +54,6 @@ public:
     /// `camera` must outlive this.
     CameraSampler(const Camera& camera, const RenderSettings& settings)
         : camera_(camera),
-          seed_(settings.seed),
           differentialScale_(
               std::max(0.125, 1 / std::sqrt(double(static_cast<uint32_t>(settings.spp))))) {}
 
@@ -62,25 +61,25 @@ public:
     /// How much shorter a sample's differentials are than a pixel's: 1 / sqrt(spp), at most 8x.
     double differentialScale() const { return differentialScale_; }
 
-    /// The sample's point on the lens (a pinhole needs none).
-    std::pair<double, double> lensSample(const PathState& path, uint64_t pixelId) const {
+    /// The sample's point on the lens (a pinhole needs none); `pixelKey`: the key of the
+    /// pixel's random numbers.
+    std::pair<double, double> lensSample(const PathState& path, uint64_t pixelKey) const {
         if (!camera_.hasLens()) return {0, 0};
-        return pairAt(seed_, pixelId, path.sample, dimension::kLens);
+        return pairAt(pixelKey, path.sample, dimension::kLens);
     }
     /// The camera ray of a path's sample, without differentials.
-    Ray primary(const PathState& path, uint64_t pixelId) const {
-        auto [lu, lv] = lensSample(path, pixelId);
+    Ray primary(const PathState& path, uint64_t pixelKey) const {
+        auto [lu, lv] = lensSample(path, pixelKey);
         return camera_.primary(path.filmX, path.filmY, lu, lv);
     }
     /// The camera ray of a path's sample, with its differentials.
-    CameraRay withDifferentials(const PathState& path, uint64_t pixelId) const {
-        auto [lu, lv] = lensSample(path, pixelId);
+    CameraRay withDifferentials(const PathState& path, uint64_t pixelKey) const {
+        auto [lu, lv] = lensSample(path, pixelKey);
         return camera_.generate(path.filmX, path.filmY, lu, lv, differentialScale_);
     }
 
 private:
     const Camera& camera_;
-    uint64_t seed_;
     double differentialScale_;
 };
 

@@ -37,6 +37,35 @@ constexpr double kRegularisedRoughness = 0.3;
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
 bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
 
+/// The shading state shared by the camera samples of one pixel that see one board face: the
+/// wood was evaluated once for them (WoodHits), so the layered BSDF, the bumped normal and the
+/// frame are the same; so is the BSDF's value towards a distant light, up to the pixel's spread
+/// of view directions. Each sample keeps its own light sample and shadow ray. Keyed on the wood
+/// evaluation, which never matches one of an earlier bounce, and on the face's normal.
+class SharedSurface {
+public:
+    /// The shading kept for (wood, ng), or null.
+    const SurfaceShading* find(const WoodHits::Evaluation& wood, const Vec3& ng) const {
+        return wood_ == wood && ng_ == ng ? &surface_ : nullptr;
+    }
+    /// Keeps `surface` for (wood, ng), with no BSDF values known yet towards the `lights`.
+    void keep(const WoodHits::Evaluation& wood, const Vec3& ng, const SurfaceShading& surface,
+              size_t lights) {
+        wood_ = wood;
+        ng_ = ng;
+        surface_ = surface;
+        lightValue_.assign(lights, Rgb{-1, -1, -1});
+    }
+    /// The BSDF's value towards each light (kept for the distant ones); r < 0: not known yet.
+    std::span<Rgb> lightValues() { return lightValue_; }
+
+private:
+    WoodHits::Evaluation wood_;
+    Vec3 ng_;
+    SurfaceShading surface_;
+    std::vector<Rgb> lightValue_;
+};
+
 /// Renders tiles: one per thread, its buffers serving every tile the thread renders (no
 /// allocation per tile).
 class TileRenderer {
@@ -59,8 +88,6 @@ private:
     void locateBoards();
     void shade(uint32_t index, PathState& path, TileAovs& aovs);
     void addEmission(PathState& path, TileAovs& aovs) const;
-    SurfaceShading sharedSurface(uint32_t index, const Material& material, const MaterialHit& at,
-                                 const Vec3& ng);
     bool bounce(PathState& path, const SurfaceShading& surface, const Vec3& ng, const Vec3& woLocal,
                 const BounceRandom& random) const;
     void finish(uint32_t index, PathState& path) {
@@ -78,27 +105,21 @@ private:
     WoodHits woodHits_;
     // The tile being rendered.
     int x0_ = 0, y0_ = 0, tw_ = 0, th_ = 0;
-    std::vector<uint64_t> pixelIds_;  ///< per pixel of the tile: its index in the image
-    std::vector<double> rotations_;   ///< per pixel of the tile: its jitter rotation (x, y)
-    TileSampling sampling_;           ///< how many samples each pixel of the tile takes
+    std::vector<uint64_t> pixelKeys_;  ///< per pixel of the tile: its random numbers' key
+    std::vector<double> rotations_;    ///< per pixel of the tile: its jitter rotation (x, y)
+    TileSampling sampling_;            ///< how many samples each pixel of the tile takes
     uint64_t rayCount_ = 0;
     // The pass: its paths, and what their current bounce found.
     std::vector<PathState> paths_;
     std::vector<uint32_t> woodPaths_;  ///< the paths on wood
     std::vector<ShadowRay> shadows_;   ///< the light samples, in path order
     std::vector<uint8_t> finished_;    ///< the paths that ended
-    /// The shading state shared by the camera samples of one pixel and board face (shade).
-    struct SharedSurface {
-        WoodHits::Evaluation wood;  ///< the wood evaluation it was made from
-        Vec3 ng;
-        SurfaceShading surface;
-        std::vector<Rgb> lightValue;  ///< BSDF value towards each distant light; r < 0: unknown
-    } shared_;
+    SharedSurface shared_;             ///< camera samples' shading, shared per pixel and board face
 };
 
 void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats) {
     startTile(x0, y0, x1, y1);
-    TileAovs aovs(pixelIds_.size());
+    TileAovs aovs(pixelKeys_.size());
     sampling_.start(tw_, th_, scene_.settings);
     // Rounds of samples (one without adaptive sampling), each in passes of at most
     // kSamplesPerPass samples per pixel, which bounds memory at any spp; each pixel still adds
@@ -118,7 +139,7 @@ void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStat
     stats.rays += rayCount_;
 }
 
-/// The tile's pixels: their image indices and jitter rotations.
+/// The tile's pixels: the keys of their random numbers and their jitter rotations.
 void TileRenderer::startTile(int x0, int y0, int x1, int y1) {
     const RenderSettings& settings = scene_.settings;
     x0_ = x0;
@@ -127,18 +148,18 @@ void TileRenderer::startTile(int x0, int y0, int x1, int y1) {
     th_ = y1 - y0;
     const size_t pixels = size_t(tw_) * th_;
     rayCount_ = 0;
-    pixelIds_.resize(pixels);
+    pixelKeys_.resize(pixels);
     rotations_.resize(2 * pixels);
     for (int j = 0; j < th_; ++j) {
         for (int i = 0; i < tw_; ++i) {
             uint32_t p = static_cast<uint32_t>(j * tw_ + i);
             uint64_t id = uint64_t(y0 + j) * settings.width + (x0 + i);
-            pixelIds_[p] = id;
+            const uint64_t key = pixelKey(settings.seed, id);
+            pixelKeys_[p] = key;
             // Pixel jitter: the R2 sequence over the samples, rotated per pixel.
-            rotations_[2 * p] =
-                randomAt(settings.seed, id, dimension::kPixelSample, dimension::kJitterRotationX);
+            rotations_[2 * p] = randomAt(key, dimension::kPixelSample, dimension::kJitterRotationX);
             rotations_[2 * p + 1] =
-                randomAt(settings.seed, id, dimension::kPixelSample, dimension::kJitterRotationY);
+                randomAt(key, dimension::kPixelSample, dimension::kJitterRotationY);
         }
     }
 }
@@ -158,7 +179,7 @@ void TileRenderer::startCameraPaths(uint32_t k0) {
     for (int j = 0; j < th_; ++j) {
         for (int i = 0; i < tw_; ++i) {
             uint32_t p = static_cast<uint32_t>(j * tw_ + i);
-            uint64_t id = pixelIds_[p];
+            const uint64_t key = pixelKeys_[p];
             const uint32_t s0 = done[p] + k0;
             const uint32_t s1 = std::min(target[p], s0 + kSamplesPerPass);
             for (uint32_t s = s0; s < s1; ++s) {
@@ -178,7 +199,7 @@ void TileRenderer::startCameraPaths(uint32_t k0) {
                 jy -= std::floor(jy);
                 path.filmX = x0_ + i + jx;
                 path.filmY = y0_ + j + jy;
-                path.ray = cameraSampler_.primary(path, id);
+                path.ray = cameraSampler_.primary(path, key);
             }
         }
     }
@@ -213,7 +234,7 @@ bool TileRenderer::traceContinuing() {
 /// then each vertex shaded, its light samples traced together.
 void TileRenderer::shadeBounce(TileAovs& aovs) {
     locateBoards();
-    woodHits_.evaluate(paths_, woodPaths_, pixelIds_);
+    woodHits_.evaluate(paths_, woodPaths_, pixelKeys_);
     shadows_.clear();
     finished_.assign(paths_.size(), 0);
     for (uint32_t i = 0; i < paths_.size(); ++i) {
@@ -289,22 +310,22 @@ void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
     Vec3 ns = path.hit.shadingNormal;
     if (dot(ng, wo) < 0) ng = -ng;
     if (dot(ns, ng) < 0) ns = -ns;
-    const MaterialHit at{.hit = &path.hit,
-                         .wo = wo,
-                         .ns = ns,
-                         .wood = wood,
-                         .boardTint = path.boardTint,
-                         .glue = path.glue,
-                         .glueCover = path.glueCover,
-                         .minRoughness = path.minRoughness};
-    // Camera samples of one pixel that see the same board face share its shading state: the
-    // wood was evaluated once for them (WoodHits), so the layered BSDF, the bumped normal and
-    // the frame are the same; so is the BSDF's value towards a distant light, up to the
-    // pixel's spread of view directions. Each sample keeps its own light sample and shadow ray.
+    // The material step, once for the camera samples of a pixel that see one board face.
     const bool shareable = camera && material.type == MaterialType::Wood && wood != nullptr &&
                            !(path.glue && path.glueCover > 0);
+    const WoodHits::Evaluation evaluation = woodHits_.evaluation(index);
+    const SurfaceShading* kept = shareable ? shared_.find(evaluation, ng) : nullptr;
     const SurfaceShading surface =
-        shareable ? sharedSurface(index, material, at, ng) : materialBsdf(material, at);
+        kept ? *kept
+             : materialBsdf(material, {.hit = &path.hit,
+                                       .wo = wo,
+                                       .ns = ns,
+                                       .wood = wood,
+                                       .boardTint = path.boardTint,
+                                       .glue = path.glue,
+                                       .glueCover = path.glueCover,
+                                       .minRoughness = path.minRoughness});
+    if (shareable && !kept) shared_.keep(evaluation, ng, surface, scene_.lights.size());
     const Vec3 woLocal = surface.frame.toLocal(wo);
 
     if (camera) {
@@ -315,15 +336,14 @@ void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
     }
 
     // Next-event estimation: its shadow rays are traced with the others of this bounce.
-    const BounceRandom random(scene_.settings.seed, pixelIds_[path.pixel], path.sample, path.depth);
+    const BounceRandom random(pixelKeys_[path.pixel], path.sample, path.depth);
     const LitVertex vertex{.position = path.hit.position,
                            .ng = ng,
                            .surface = &surface,
                            .woLocal = woLocal,
                            .throughput = path.throughput,
                            .continues = path.depth + 1 < scene_.settings.maxDepth};
-    directLight_.sample(vertex, random,
-                        shareable ? std::span<Rgb>(shared_.lightValue) : std::span<Rgb>(), index,
+    directLight_.sample(vertex, random, shareable ? shared_.lightValues() : std::span<Rgb>(), index,
                         shadows_);
 
     if (!bounce(path, surface, ng, woLocal, random)) finish(index, path);
@@ -353,19 +373,6 @@ void TileRenderer::addEmission(PathState& path, TileAovs& aovs) const {
     }
     double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
     path.radiance = path.radiance + multiply(path.throughput, le) * w;
-}
-
-/// The material step for a camera sample that may share it with the pixel's samples before it
-/// (shade): made again only when the wood evaluation or the face changes.
-SurfaceShading TileRenderer::sharedSurface(uint32_t index, const Material& material,
-                                           const MaterialHit& at, const Vec3& ng) {
-    const WoodHits::Evaluation evaluation = woodHits_.evaluation(index);
-    if (shared_.wood == evaluation && shared_.ng == ng) return shared_.surface;
-    shared_.wood = evaluation;
-    shared_.ng = ng;
-    shared_.surface = materialBsdf(material, at);
-    shared_.lightValue.assign(scene_.lights.size(), Rgb{-1, -1, -1});
-    return shared_.surface;
 }
 
 /// Continues the path in a direction sampled from the BSDF, with Russian roulette from the

@@ -2,7 +2,8 @@
 /// The random numbers of the path tracer, by name. Every random number is a pure function of
 /// (seed, pixel, sample, dimension), so the image does not depend on thread count or tile order,
 /// and a pixel's k-th sample is the same whichever round of adaptive sampling takes it. This
-/// file is the one map of the dimensions: two draws that shared one would be correlated.
+/// file is the one map of the dimensions: two draws that shared one would be correlated. The
+/// (seed, pixel) part is hashed once per pixel, into the pixel's key.
 ///
 ///   dimension                  draw     what
 ///   0, 1 of kPixelSample       random   rotation of the pixel's jitter sequence (per pixel)
@@ -23,18 +24,19 @@
 
 namespace nenrin {
 
+/// The key of one pixel's random numbers: the seed and the pixel, hashed.
+inline uint64_t pixelKey(uint64_t seed, uint64_t pixel) { return hashCombine(seed, pixel); }
+
 /// The counter-based random number for (pixel, sample, dimension).
-inline double randomAt(uint64_t seed, uint64_t pixel, uint64_t sample, uint64_t dimension) {
-    return uniform01(hashCombine(seed, pixel), sample, dimension);
+inline double randomAt(uint64_t pixelKey, uint64_t sample, uint64_t dimension) {
+    return uniform01(pixelKey, sample, dimension);
 }
 
 /// Two dimensions that sample one 2D domain together (a lens point, a light point, a BSDF
 /// direction): a scrambled Sobol pair of their own per pixel, so a pixel's samples stratify
 /// each such domain.
-inline std::pair<double, double> pairAt(uint64_t seed, uint64_t pixel, uint64_t sample,
-                                        uint64_t dimension) {
-    return scrambledSobol2D(static_cast<uint32_t>(sample),
-                            hashCombine(hashCombine(seed, pixel), dimension));
+inline std::pair<double, double> pairAt(uint64_t pixelKey, uint64_t sample, uint64_t dimension) {
+    return scrambledSobol2D(static_cast<uint32_t>(sample), hashCombine(pixelKey, dimension));
 }
 
 namespace dimension {
@@ -74,16 +76,16 @@ constexpr uint64_t lightPick(size_t everyVertex) { return lightPair(everyVertex 
 /// The random numbers of one bounce of one path sample, by offset from the bounce's base.
 class BounceRandom {
 public:
-    BounceRandom(uint64_t seed, uint64_t pixel, uint64_t sample, int depth)
-        : seed_(seed), pixel_(pixel), sample_(sample), base_(dimension::bounceBase(depth)) {}
+    BounceRandom(uint64_t pixelKey, uint64_t sample, int depth)
+        : pixelKey_(pixelKey), sample_(sample), base_(dimension::bounceBase(depth)) {}
 
-    double at(uint64_t offset) const { return randomAt(seed_, pixel_, sample_, base_ + offset); }
+    double at(uint64_t offset) const { return randomAt(pixelKey_, sample_, base_ + offset); }
     std::pair<double, double> pair(uint64_t offset) const {
-        return pairAt(seed_, pixel_, sample_, base_ + offset);
+        return pairAt(pixelKey_, sample_, base_ + offset);
     }
 
 private:
-    uint64_t seed_, pixel_, sample_, base_;
+    uint64_t pixelKey_, sample_, base_;
 };
 
 }  // namespace nenrin

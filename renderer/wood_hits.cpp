@@ -23,7 +23,7 @@ double glueCoverage(double distance, double width, double footprint) {
 }  // namespace
 
 void WoodHits::evaluate(std::span<PathState> paths, std::span<const uint32_t> woodPaths,
-                        std::span<const uint64_t> pixelIds) {
+                        std::span<const uint64_t> pixelKeys) {
     ++round_;
     slot_.assign(paths.size(), -1);
     results_.clear();
@@ -51,7 +51,7 @@ void WoodHits::evaluate(std::span<PathState> paths, std::span<const uint32_t> wo
                           scene_.materials[first.material].wood,
                           (*first.treeFromObject) * first.worldFromObject->inverse(),
                           first.depth == 0};
-        gather(batch, pixelIds);
+        gather(batch, pixelKeys);
         if (batch.camera) {
             shadeCameraWood(batch);
             refineKnotEdges(batch);
@@ -66,7 +66,7 @@ void WoodHits::evaluate(std::span<PathState> paths, std::span<const uint32_t> wo
 
 /// The batch's tree-space points, and the camera footprints that shadeCameraWood and the glue
 /// line need.
-void WoodHits::gather(const Batch& batch, std::span<const uint64_t> pixelIds) {
+void WoodHits::gather(const Batch& batch, std::span<const uint64_t> pixelKeys) {
     const size_t n = batch.entries.size();
     points_.resize(n);
     footprints_.resize(batch.camera ? n : 0);
@@ -78,13 +78,13 @@ void WoodHits::gather(const Batch& batch, std::span<const uint64_t> pixelIds) {
         // Footprints for the first sample of each pixel (shadeCameraWood) and for samples
         // near glue lines.
         if (batch.camera && (k == 0 || pixel_[k] != pixel_[k - 1] || p.glue))
-            footprints_[k] = cameraFootprint(p, pixelIds[p.pixel], batch.treeFromWorld);
+            footprints_[k] = cameraFootprint(p, pixelKeys[p.pixel], batch.treeFromWorld);
     }
 }
 
 /// A camera sample's footprint: where the neighbouring pixels' rays (scaled to the sample's
 /// share of the pixel) meet the hit's plane.
-SurfaceFootprint WoodHits::cameraFootprint(const PathState& p, uint64_t pixelId,
+SurfaceFootprint WoodHits::cameraFootprint(const PathState& p, uint64_t pixelKey,
                                            const RigidTransform& treeFromWorld) const {
     const Vec3& n0 = p.hit.geometricNormal;
     auto onPlane = [&](const Ray& r) {
@@ -93,7 +93,7 @@ SurfaceFootprint WoodHits::cameraFootprint(const PathState& p, uint64_t pixelId,
         double t = dot(n0, p.hit.position - r.origin) / den;
         return r.origin + r.direction * t;
     };
-    CameraRay c = camera_.withDifferentials(p, pixelId);
+    CameraRay c = camera_.withDifferentials(p, pixelKey);
     return {treeFromWorld.vector(onPlane(c.rayX) - p.hit.position),
             treeFromWorld.vector(onPlane(c.rayY) - p.hit.position), 0, treeFromWorld.vector(n0)};
 }

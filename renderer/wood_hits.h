@@ -24,10 +24,10 @@ public:
     WoodHits(const Scene& scene, const CameraSampler& camera) : scene_(scene), camera_(camera) {}
 
     /// Evaluates the wood at paths[i] for every i in `woodPaths` (increasing; paths whose hit
-    /// is on a wood material, all at one depth) and sets their glueCover. `pixelIds`: the image
-    /// pixel of each pixel of the tile.
+    /// is on a wood material, all at one depth) and sets their glueCover. `pixelKeys`: the key
+    /// of the random numbers of each pixel of the tile (sample_dimensions.h).
     void evaluate(std::span<PathState> paths, std::span<const uint32_t> woodPaths,
-                  std::span<const uint64_t> pixelIds);
+                  std::span<const uint64_t> pixelKeys);
 
     /// The wood at path i's hit (world-space directions), or null if it is not on wood.
     const WoodSurfaceSample* at(uint32_t path) const {
@@ -55,8 +55,8 @@ private:
         bool camera;
         PathState& path(size_t k) const { return paths[entries[k]]; }
     };
-    void gather(const Batch& batch, std::span<const uint64_t> pixelIds);
-    SurfaceFootprint cameraFootprint(const PathState& path, uint64_t pixelId,
+    void gather(const Batch& batch, std::span<const uint64_t> pixelKeys);
+    SurfaceFootprint cameraFootprint(const PathState& path, uint64_t pixelKey,
                                      const RigidTransform& treeFromWorld) const;
     void shadeCameraWood(const Batch& batch);
     void refineKnotEdges(const Batch& batch);
