@@ -4,431 +4,253 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <limits>
-#include <numeric>
+#include <span>
 #include <stdexcept>
-#include <utility>
+#include <vector>
 
+#include "renderer/adaptive_sampling.h"
 #include "renderer/camera.h"
-#include "renderer/light_selection.h"
+#include "renderer/direct_light.h"
+#include "renderer/film_tile.h"
 #include "renderer/lights.h"
+#include "renderer/material_bsdf.h"
 #include "renderer/parallel_tiles.h"
+#include "renderer/path_state.h"
 #include "renderer/ray_scene.h"
+#include "renderer/sample_dimensions.h"
+#include "renderer/wood_hits.h"
 #include "shader/surface_bsdf.h"
 #include "util/axis_frame.h"
-#include "util/hash.h"
 #include "util/memory_budget.h"
 #include "util/progress.h"
-#include "util/scrambled_sobol.h"
 
 namespace nenrin {
 
 namespace {
 
 constexpr int kTileSize = kRenderTileSize;
-/// A pixel whose shared wood evaluation is on a knot's edge (knot share between this and
-/// 1 - this) is shaded per sample.
-constexpr double kKnotRefinement = 0.02;
 constexpr uint32_t kSamplesPerPass = 64;
-/// Adaptive sampling: samples every pixel takes before its noise is first estimated.
-constexpr uint32_t kDefaultMinSpp = 16;
-/// Random dimensions: 0-3 camera (pixel jitter, lens), then kDimsPerBounce per bounce.
-constexpr uint64_t kLightDims = 2;
-/// Bounces are spaced far apart so a scene's light count never makes two bounces share one.
-constexpr uint64_t kDimsPerBounce = 1 << 16;
 constexpr double kRegularisedRoughness = 0.3;
-
-/// The counter-based random number for (pixel, sample, dimension).
-double randomAt(uint64_t seed, uint64_t pixel, uint64_t sample, uint64_t dimension) {
-    return uniform01(hashCombine(seed, pixel), sample, dimension);
-}
-
-/// Two dimensions that sample one 2D domain together (a lens point, a light point, a BSDF
-/// direction): a scrambled Sobol pair of their own per pixel, so a pixel's samples stratify
-/// each such domain.
-std::pair<double, double> pairAt(uint64_t seed, uint64_t pixel, uint64_t sample,
-                                 uint64_t dimension) {
-    return scrambledSobol2D(static_cast<uint32_t>(sample),
-                            hashCombine(hashCombine(seed, pixel), dimension));
-}
 
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
 bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
 
-double powerHeuristic(double a, double b) {
-    double a2 = a * a, b2 = b * b;
-    return a2 + b2 > 0 ? a2 / (a2 + b2) : 0;
-}
+/// The shading state shared by the camera samples of one pixel that see one board face: the
+/// wood was evaluated once for them (WoodHits), so the layered BSDF, the bumped normal and the
+/// frame are the same; so is the BSDF's value towards a distant light, up to the pixel's spread
+/// of view directions. Each sample keeps its own light sample and shadow ray. Keyed on the wood
+/// evaluation, which never matches one of an earlier bounce, and on the face's normal.
+class SharedSurface {
+public:
+    /// The shading kept for (wood, ng), or null.
+    const SurfaceShading* find(const WoodHits::Evaluation& wood, const Vec3& ng) const {
+        return wood_ == wood && ng_ == ng ? &surface_ : nullptr;
+    }
+    /// Keeps `surface` for (wood, ng), with no BSDF values known yet towards the `lights`.
+    void keep(const WoodHits::Evaluation& wood, const Vec3& ng, const SurfaceShading& surface,
+              size_t lights) {
+        wood_ = wood;
+        ng_ = ng;
+        surface_ = surface;
+        lightValue_.assign(lights, Rgb{-1, -1, -1});
+    }
+    /// The BSDF's value towards each light (kept for the distant ones); r < 0: not known yet.
+    std::span<Rgb> lightValues() { return lightValue_; }
 
-/// Share of a footprint of diameter `footprint` centred `distance` from the middle of a line
-/// of `width`: the box-filtered glue line, so it neither aliases nor vanishes far away.
-double glueCoverage(double distance, double width, double footprint) {
-    if (footprint <= 1e-3 * width) return distance <= 0.5 * width ? 1 : 0;
-    double overlap = std::min(distance + 0.5 * width, 0.5 * footprint) -
-                     std::max(distance - 0.5 * width, -0.5 * footprint);
-    return std::clamp(overlap / footprint, 0.0, 1.0);
-}
-
-/// Ray origin nudged off the surface along the geometric normal, to the side of `towards`.
-Vec3 offsetOrigin(const Vec3& p, const Vec3& ng, const Vec3& towards) {
-    double scale = 1e-5 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
-    return p + ng * (dot(ng, towards) > 0 ? scale : -scale);
-}
-
-struct PathState {
-    Ray ray;
-    /// Film position of the camera sample (pixels): its ray differentials are made again
-    /// from it where a footprint is needed, instead of being carried by every path.
-    double filmX = 0, filmY = 0;
-    Rgb throughput{1, 1, 1};
-    Rgb radiance;
-    uint32_t pixel = 0;  ///< index within the tile
-    uint32_t sample = 0;
-    int depth = 0;
-    double bsdfPdf = 0;  ///< density of the bounce that made the current ray (for MIS)
-    /// The vertex the current ray left and its geometric normal: where a light the ray finds
-    /// would have been selected from (MIS with light selection).
-    Vec3 lastPosition, lastNormal;
-    bool alive = true;
-    SurfaceHit hit;
-    // Shading inputs worked out per hit.
-    uint32_t material = 0;
-    int32_t lamella = -1;
-    Rgb boardTint{1, 1, 1};  ///< the board's tree (cut plan)
-    const RigidTransform* treeFromObject = nullptr;
-    const RigidTransform* worldFromObject = nullptr;
-    const GlueLine* glue = nullptr;  ///< laminated products
-    double glueDistance = 0;         ///< m, to the nearest glued boundary
-    double glueCover = 0;            ///< share of the footprint on the glue line
-    /// Path regularisation: after a diffuse bounce, glossy lobes are at least this rough, so
-    /// sun glints seen through diffuse bounces (caustics) blur instead of sparkling.
-    double minRoughness = 0;
+private:
+    WoodHits::Evaluation wood_;
+    Vec3 ng_;
+    SurfaceShading surface_;
+    std::vector<Rgb> lightValue_;
 };
 
-/// Per-pixel AOV accumulators of one tile.
-struct TileAovs {
-    std::vector<Rgb> rgb, albedo;
-    /// Adaptive sampling only: the radiance of the pixel's first halfCount samples.
-    std::vector<Rgb> rgbHalf;
-    std::vector<uint32_t> halfCount;
-    std::vector<Vec3> normal;
-    std::vector<double> hits, depth, woodHits, growthTime, knot;
-    std::vector<int32_t> lamella;
-    explicit TileAovs(size_t n, bool adaptive)
-        : rgb(n),
-          albedo(n),
-          rgbHalf(adaptive ? n : 0),
-          halfCount(adaptive ? n : 0),
-          normal(n),
-          hits(n),
-          depth(n),
-          woodHits(n),
-          growthTime(n),
-          knot(n),
-          lamella(n, -1) {}
-};
-
+/// Renders tiles: one per thread, its buffers serving every tile the thread renders (no
+/// allocation per tile).
 class TileRenderer {
 public:
     TileRenderer(const Scene& scene, const RayScene& rays, const Camera& camera)
         : scene_(scene),
           rays_(rays),
           camera_(camera),
-          env_(environmentLight(scene)),
-          lightSelection_(scene.lights, scene.settings.lightSelection) {}
+          cameraSampler_(camera, scene.settings),
+          directLight_(scene),
+          woodHits_(scene, cameraSampler_) {}
 
     void render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats);
 
 private:
-    void traceCamera(std::vector<PathState>& paths);
-    void resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
-                     const std::vector<uint64_t>& pixelIds);
-    void shadeWood(std::vector<PathState>& paths, const std::vector<uint32_t>& woodPaths);
-    /// The camera ray of a path's sample, with its differentials.
-    CameraRay cameraRay(const PathState& path, uint64_t pixelId) const {
-        auto [lu, lv] = lensSample(path, pixelId);
-        return camera_.generate(path.filmX, path.filmY, lu, lv, differentialScale_);
+    void startTile(int x0, int y0, int x1, int y1);
+    void startCameraPaths(uint32_t k0);
+    void traceCamera();
+    void shadeBounce(TileAovs& aovs);
+    void locateBoards();
+    void shade(uint32_t index, PathState& path, TileAovs& aovs);
+    void addEmission(PathState& path, TileAovs& aovs) const;
+    bool bounce(PathState& path, const SurfaceShading& surface, const Vec3& ng, const Vec3& woLocal,
+                const BounceRandom& random) const;
+    void finish(uint32_t index, PathState& path) {
+        path.alive = false;
+        finished_[index] = 1;
     }
-    /// The sample's point on the lens (random dimensions 2 and 3; a pinhole needs none).
-    std::pair<double, double> lensSample(const PathState& path, uint64_t pixelId) const {
-        if (!camera_.hasLens()) return {0, 0};
-        const uint64_t seed = scene_.settings.seed;
-        return pairAt(seed, pixelId, path.sample, 2);
-    }
-    /// Fills groupResults_ (one per pixel) and groupStart_ for a camera batch of n entries.
-    void shadeCameraWood(const WoodShader& shader, size_t n);
-    void shade(uint32_t index, PathState& path, uint64_t pixelId, const WoodSurfaceSample* wood,
-               TileAovs& aovs);
-    void traceShadows(std::vector<PathState>& paths, TileAovs& aovs);
-    /// Adaptive sampling: raises samplesTarget_ of the pixels that need more samples.
-    void planNextRound(int tw, int th, const TileAovs& aovs, double threshold, uint32_t spp);
+    void traceShadows(TileAovs& aovs);
+    bool traceContinuing();
 
     const Scene& scene_;
     const RayScene& rays_;
     const Camera& camera_;
-    const Light* env_;
-    LightSelection lightSelection_;
-    std::vector<double> lightCdf_;  ///< LightSelection::select's scratch
+    CameraSampler cameraSampler_;
+    DirectLight directLight_;
+    WoodHits woodHits_;
+    // The tile being rendered.
+    int x0_ = 0, y0_ = 0, tw_ = 0, th_ = 0;
+    std::vector<uint64_t> pixelKeys_;  ///< per pixel of the tile: its random numbers' key
+    std::vector<double> rotations_;    ///< per pixel of the tile: its jitter rotation (x, y)
+    TileSampling sampling_;            ///< how many samples each pixel of the tile takes
     uint64_t rayCount_ = 0;
-    // Scratch, reused by the tiles one thread renders (no allocation per tile).
+    // The pass: its paths, and what their current bounce found.
     std::vector<PathState> paths_;
-    struct PendingShadow {
-        uint32_t path;
-        Ray ray;
-        double tMax;
-        Rgb contribution;  ///< throughput x light sample, added if unoccluded
-        bool blocked = false;
-    };
-    std::vector<PendingShadow> shadows_;  ///< this bounce's light samples, in path order
-    /// The shading state shared by the camera samples of one pixel and board face (shade).
-    struct SharedSurface {
-        const WoodSurfaceSample* wood = nullptr;
-        Vec3 ng, ns;
-        SurfaceBsdf bsdf;
-        AxisFrame frame;
-        std::vector<Rgb> lightValue;  ///< BSDF value towards each distant light; r < 0: unknown
-    } shared_;
-    std::vector<uint8_t> finished_;                      ///< paths that ended this bounce
-    std::vector<uint32_t> samplesDone_, samplesTarget_;  ///< per pixel of the tile
-    std::vector<double> noiseRatio_;
-    std::vector<uint8_t> noisy_;
-    std::vector<uint64_t> pixelIds_;
-    std::vector<double> rotations_;
-    std::vector<uint32_t> woodPathIds_, woodOrder_;
-    std::vector<WoodSurfaceSample> woodResults_;
-    std::vector<int32_t> woodSlot_;
-    WoodScratch woodScratch_;
-    std::vector<Vec3> woodPoints_;
-    std::vector<SurfaceFootprint> woodFootprints_;
-    std::vector<WoodSurfaceSample> woodBatch_;
-    std::vector<WoodSample> woodPlain_;
-    // Camera hits shaded once per pixel and board (shadeCameraWood).
-    std::vector<uint32_t> groupStart_;
-    std::vector<Vec3> groupPoints_;
-    std::vector<SurfaceFootprint> groupFootprints_;
-    std::vector<WoodSurfaceSample> groupResults_;
-    std::vector<uint32_t> batchPixel_;
-    std::vector<int32_t> refineEntries_;  ///< per batch entry: its quadrant evaluation, or -1
-    std::vector<int32_t> refineSlots_;
-    std::vector<Vec3> refinePoints_;
-    std::vector<SurfaceFootprint> refineFootprints_;
-    std::vector<WoodSurfaceSample> refineResults_;
-    double differentialScale_ = 1;
+    std::vector<uint32_t> woodPaths_;  ///< the paths on wood
+    std::vector<ShadowRay> shadows_;   ///< the light samples, in path order
+    std::vector<uint8_t> finished_;    ///< the paths that ended
+    SharedSurface shared_;             ///< camera samples' shading, shared per pixel and board face
 };
 
 void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats) {
-    const RenderSettings& settings = scene_.settings;
-    const int tw = x1 - x0, th = y1 - y0;
-    const size_t pixels = size_t(tw) * th;
-    const uint32_t spp = static_cast<uint32_t>(settings.spp);
-    differentialScale_ = std::max(0.125, 1 / std::sqrt(double(spp)));
-
-    rayCount_ = 0;
-    std::vector<uint64_t>& pixelIds = pixelIds_;
-    std::vector<double>& rotations = rotations_;
-    pixelIds.resize(pixels);
-    rotations.resize(2 * pixels);
-    for (int j = 0; j < th; ++j) {
-        for (int i = 0; i < tw; ++i) {
-            uint32_t p = static_cast<uint32_t>(j * tw + i);
-            uint64_t id = uint64_t(y0 + j) * settings.width + (x0 + i);
-            pixelIds[p] = id;
-            // Pixel jitter: the R2 sequence over the samples, rotated per pixel.
-            rotations[2 * p] = randomAt(settings.seed, id, 0xffffffffull, 0);
-            rotations[2 * p + 1] = randomAt(settings.seed, id, 0xffffffffull, 1);
-        }
-    }
-
-    // Adaptive sampling: rounds. Every pixel first takes minSpp samples; then each pixel whose
-    // pooled noise estimate, or a neighbour's, is above the threshold doubles its samples, up
-    // to spp (planNextRound). Decisions use this tile's pixels only (tiles are fixed, whatever the
-    // thread count), and a pixel's k-th sample is the same wherever it is taken: the image is
-    // deterministic.
-    const bool adaptive = settings.noiseThreshold > 0;
-    const uint32_t firstRound =
-        adaptive ? std::min(spp, settings.minSpp > 0 ? static_cast<uint32_t>(settings.minSpp)
-                                                     : std::min(spp, kDefaultMinSpp))
-                 : spp;
-    TileAovs aovs(pixels, adaptive);
-    std::vector<uint32_t>& done = samplesDone_;
-    std::vector<uint32_t>& target = samplesTarget_;
-    done.assign(pixels, 0);
-    target.assign(pixels, firstRound);
-    if (adaptive) aovs.halfCount.assign(pixels, firstRound / 2);
-    std::vector<PathState>& paths = paths_;
-    while (true) {
-        // Samples go through in passes of at most kSamplesPerPass per pixel, which bounds
-        // memory at any spp; each pixel still adds its samples in order, so sums are
-        // deterministic.
-        uint32_t longest = 0;
-        for (size_t p = 0; p < pixels; ++p) longest = std::max(longest, target[p] - done[p]);
-        if (longest == 0) break;
+    startTile(x0, y0, x1, y1);
+    TileAovs aovs(pixelKeys_.size());
+    sampling_.start(tw_, th_, scene_.settings);
+    // Rounds of samples (one without adaptive sampling), each in passes of at most
+    // kSamplesPerPass samples per pixel, which bounds memory at any spp; each pixel still adds
+    // its samples in order, so sums are deterministic.
+    while (const uint32_t longest = sampling_.longestRound()) {
         for (uint32_t k0 = 0; k0 < longest; k0 += kSamplesPerPass) {
-            size_t count = 0;
-            for (size_t p = 0; p < pixels; ++p)
-                count += std::min(target[p] - done[p] - std::min(target[p] - done[p], k0),
-                                  kSamplesPerPass);
-            // Only the fields a new camera path needs are reset: the state is large, and
-            // resetting all of it for every sample was a measurable share of a render.
-            paths.resize(count);
-            size_t next = 0;
-            for (int j = 0; j < th; ++j) {
-                for (int i = 0; i < tw; ++i) {
-                    uint32_t p = static_cast<uint32_t>(j * tw + i);
-                    uint64_t id = pixelIds[p];
-                    const uint32_t s0 = done[p] + k0;
-                    const uint32_t s1 = std::min(target[p], s0 + kSamplesPerPass);
-                    for (uint32_t s = s0; s < s1; ++s) {
-                        PathState& path = paths[next++];
-                        path.throughput = {1, 1, 1};
-                        path.radiance = {};
-                        path.depth = 0;
-                        path.bsdfPdf = 0;
-                        path.alive = true;
-                        path.minRoughness = 0;
-                        path.glue = nullptr;
-                        path.pixel = p;
-                        path.sample = s;
-                        double jx = rotations[2 * p] + s * 0.7548776662466927;
-                        double jy = rotations[2 * p + 1] + s * 0.5698402909980532;
-                        jx -= std::floor(jx);
-                        jy -= std::floor(jy);
-                        path.filmX = x0 + i + jx;
-                        path.filmY = y0 + j + jy;
-                        auto [lu, lv] = lensSample(path, id);
-                        path.ray = camera_.primary(path.filmX, path.filmY, lu, lv);
-                    }
-                }
-            }
-            traceCamera(paths);
-            while (true) {
-                resolveHits(paths, aovs, pixelIds);
-                bool any = false;
-                for (PathState& path : paths) {
-                    if (!path.alive) continue;
-                    any = true;
-                    path.hit = rays_.intersect(path.ray);
-                    ++rayCount_;
-                }
-                if (!any) break;
-            }
+            startCameraPaths(k0);
+            traceCamera();
+            do shadeBounce(aovs);
+            while (traceContinuing());
         }
-        done = target;
-        if (!adaptive) break;
-        planNextRound(tw, th, aovs, settings.noiseThreshold, spp);
-        // The next estimate compares a pixel's mean with the mean of the samples it has now.
-        for (size_t p = 0; p < pixels; ++p)
-            if (target[p] > done[p]) {
-                aovs.rgbHalf[p] = aovs.rgb[p];
-                aovs.halfCount[p] = done[p];
-            }
+        sampling_.endRound(aovs.rgb);
     }
-
-    // Into the film: this tile's pixels only, so threads never share a pixel.
-    for (int j = 0; j < th; ++j) {
-        for (int i = 0; i < tw; ++i) {
-            size_t p = size_t(j) * tw + i;
-            size_t f = size_t(y0 + j - film.firstRow) * film.width + (x0 + i);
-            const double inv = 1.0 / done[p];
-            Rgb c = aovs.rgb[p] * inv;
-            film.rgb[3 * f] = float(c.r);
-            film.rgb[3 * f + 1] = float(c.g);
-            film.rgb[3 * f + 2] = float(c.b);
-            film.alpha[f] = float(aovs.hits[p] * inv);
-            if (!film.samples.empty()) film.samples[f] = float(done[p]);
-            if (aovs.hits[p] > 0) {
-                double h = 1 / aovs.hits[p];
-                Rgb a = aovs.albedo[p] * h;
-                Vec3 n = aovs.normal[p] * h;
-                film.albedo[3 * f] = float(a.r);
-                film.albedo[3 * f + 1] = float(a.g);
-                film.albedo[3 * f + 2] = float(a.b);
-                film.normal[3 * f] = float(n.x);
-                film.normal[3 * f + 1] = float(n.y);
-                film.normal[3 * f + 2] = float(n.z);
-                film.depth[f] = float(aovs.depth[p] * h);
-            }
-            if (aovs.woodHits[p] > 0) {
-                film.growthTime[f] = float(aovs.growthTime[p] / aovs.woodHits[p]);
-                film.knot[f] = float(aovs.knot[p] / aovs.woodHits[p]);
-            }
-            film.lamella[f] = float(aovs.lamella[p]);
-        }
-    }
-    for (size_t p = 0; p < pixels; ++p) stats.cameraRays += done[p];
+    const std::vector<uint32_t>& done = sampling_.samplesDone();
+    aovs.writeInto(film, x0, y0, tw_, th_, done);
+    for (size_t p = 0; p < done.size(); ++p) stats.cameraRays += done[p];
     stats.rays += rayCount_;
 }
 
-void TileRenderer::planNextRound(int tw, int th, const TileAovs& aovs, double threshold,
-                                 uint32_t spp) {
-    // Each pixel's noise: how far its mean I over n samples has moved from the mean A of its
-    // first m (half of them): for independent samples E|I - A|^2 = sigma^2 (1/m - 1/n), so
-    // |I - A|^2 m / (n - m) estimates the squared standard error of I, and with stratified
-    // samples it follows their faster convergence. Summed over R, G, B and taken over the mean
-    // (the error after a display's gamma, up to a factor). One such draw is noisy, so each
-    // pixel takes the mean of its 3 x 3 neighbourhood's (27 draws) before it is compared.
-    const size_t pixels = size_t(tw) * th;
-    std::vector<double>& ratio = noiseRatio_;
-    ratio.assign(pixels, 0);
-    for (size_t p = 0; p < pixels; ++p) {
-        const double n = samplesDone_[p], m = aovs.halfCount[p];
-        if (m < 1 || n <= m) {
-            ratio[p] = std::numeric_limits<double>::infinity();
-            continue;
+/// The tile's pixels: the keys of their random numbers and their jitter rotations.
+void TileRenderer::startTile(int x0, int y0, int x1, int y1) {
+    const RenderSettings& settings = scene_.settings;
+    x0_ = x0;
+    y0_ = y0;
+    tw_ = x1 - x0;
+    th_ = y1 - y0;
+    const size_t pixels = size_t(tw_) * th_;
+    rayCount_ = 0;
+    pixelKeys_.resize(pixels);
+    rotations_.resize(2 * pixels);
+    for (int j = 0; j < th_; ++j) {
+        for (int i = 0; i < tw_; ++i) {
+            uint32_t p = static_cast<uint32_t>(j * tw_ + i);
+            uint64_t id = uint64_t(y0 + j) * settings.width + (x0 + i);
+            const uint64_t key = pixelKey(settings.seed, id);
+            pixelKeys_[p] = key;
+            // Pixel jitter: the R2 sequence over the samples, rotated per pixel.
+            rotations_[2 * p] = randomAt(key, dimension::kPixelSample, dimension::kJitterRotationX);
+            rotations_[2 * p + 1] =
+                randomAt(key, dimension::kPixelSample, dimension::kJitterRotationY);
         }
-        const Rgb mean = aovs.rgb[p] * (1 / n);
-        const Rgb d = mean - aovs.rgbHalf[p] * (1 / m);
-        const double error2 = (d.r * d.r + d.g * d.g + d.b * d.b) * m / (n - m);
-        ratio[p] = error2 / std::max(mean.r + mean.g + mean.b, 1e-4);
     }
-    std::vector<uint8_t>& noisy = noisy_;
-    noisy.assign(pixels, 0);
-    for (int j = 0; j < th; ++j)
-        for (int i = 0; i < tw; ++i) {
-            double sum = 0;
-            int count = 0;
-            for (int v = std::max(0, j - 1); v <= std::min(th - 1, j + 1); ++v)
-                for (int u = std::max(0, i - 1); u <= std::min(tw - 1, i + 1); ++u, ++count)
-                    sum += ratio[size_t(v) * tw + u];
-            noisy[size_t(j) * tw + i] = sum > threshold * threshold * count;
-        }
-    // A pixel goes on if it or a neighbour is noisy: a single estimate from few samples can
-    // look converged by chance, and noise comes in patches.
-    for (int j = 0; j < th; ++j)
-        for (int i = 0; i < tw; ++i) {
-            const size_t p = size_t(j) * tw + i;
-            bool more = false;
-            for (int dj = -1; dj <= 1 && !more; ++dj)
-                for (int di = -1; di <= 1 && !more; ++di) {
-                    const int u = i + di, v = j + dj;
-                    more = u >= 0 && v >= 0 && u < tw && v < th && noisy[size_t(v) * tw + u];
-                }
-            if (more) samplesTarget_[p] = std::min(spp, 2 * samplesDone_[p]);
-        }
 }
 
-void TileRenderer::traceCamera(std::vector<PathState>& paths) {
+/// The camera paths of the pass that starts k0 samples into this round: up to kSamplesPerPass
+/// per pixel, pixel by pixel.
+void TileRenderer::startCameraPaths(uint32_t k0) {
+    const std::vector<uint32_t>& done = sampling_.samplesDone();
+    const std::vector<uint32_t>& target = sampling_.samplesTarget();
+    size_t count = 0;
+    for (size_t p = 0; p < done.size(); ++p)
+        count += std::min(target[p] - done[p] - std::min(target[p] - done[p], k0), kSamplesPerPass);
+    // Only the fields a new camera path needs are reset: the state is large, and resetting all
+    // of it for every sample was a measurable share of a render.
+    paths_.resize(count);
+    size_t next = 0;
+    for (int j = 0; j < th_; ++j) {
+        for (int i = 0; i < tw_; ++i) {
+            uint32_t p = static_cast<uint32_t>(j * tw_ + i);
+            const uint64_t key = pixelKeys_[p];
+            const uint32_t s0 = done[p] + k0;
+            const uint32_t s1 = std::min(target[p], s0 + kSamplesPerPass);
+            for (uint32_t s = s0; s < s1; ++s) {
+                PathState& path = paths_[next++];
+                path.throughput = {1, 1, 1};
+                path.radiance = {};
+                path.depth = 0;
+                path.bsdfPdf = 0;
+                path.alive = true;
+                path.minRoughness = 0;
+                path.glue = nullptr;
+                path.pixel = p;
+                path.sample = s;
+                double jx = rotations_[2 * p] + s * 0.7548776662466927;
+                double jy = rotations_[2 * p + 1] + s * 0.5698402909980532;
+                jx -= std::floor(jx);
+                jy -= std::floor(jy);
+                path.filmX = x0_ + i + jx;
+                path.filmY = y0_ + j + jy;
+                path.ray = cameraSampler_.primary(path, key);
+            }
+        }
+    }
+}
+
+/// The camera rays, in packets of 16.
+void TileRenderer::traceCamera() {
     Ray rays[16];
     SurfaceHit hits[16];
-    for (size_t base = 0; base < paths.size(); base += 16) {
-        int count = static_cast<int>(std::min<size_t>(16, paths.size() - base));
-        for (int k = 0; k < count; ++k) rays[k] = paths[base + k].ray;
+    for (size_t base = 0; base < paths_.size(); base += 16) {
+        int count = static_cast<int>(std::min<size_t>(16, paths_.size() - base));
+        for (int k = 0; k < count; ++k) rays[k] = paths_[base + k].ray;
         rays_.intersect16(rays, count, hits);
-        for (int k = 0; k < count; ++k) paths[base + k].hit = hits[k];
+        for (int k = 0; k < count; ++k) paths_[base + k].hit = hits[k];
     }
-    rayCount_ += paths.size();
+    rayCount_ += paths_.size();
 }
 
-/// Surface points of the hits: where in the tree (wood), which board, and the footprint.
-void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
-                               const std::vector<uint64_t>& pixelIds) {
-    std::vector<uint32_t>& woodPaths = woodPathIds_;
-    woodPaths.clear();
-    for (uint32_t i = 0; i < paths.size(); ++i) {
-        PathState& path = paths[i];
+/// The rays of the paths that go on; false if none does.
+bool TileRenderer::traceContinuing() {
+    bool any = false;
+    for (PathState& path : paths_) {
+        if (!path.alive) continue;
+        any = true;
+        path.hit = rays_.intersect(path.ray);
+        ++rayCount_;
+    }
+    return any;
+}
+
+/// One bounce of every live path: what each hit is on, the wood there (in coherent batches),
+/// then each vertex shaded, its light samples traced together.
+void TileRenderer::shadeBounce(TileAovs& aovs) {
+    locateBoards();
+    woodHits_.evaluate(paths_, woodPaths_, pixelKeys_);
+    shadows_.clear();
+    finished_.assign(paths_.size(), 0);
+    for (uint32_t i = 0; i < paths_.size(); ++i) {
+        PathState& path = paths_[i];
+        if (!path.alive) continue;
+        shade(i, path, aovs);
+    }
+    traceShadows(aovs);
+}
+
+/// What the surface hits are on: the object's material, and in laminated products the board
+/// (its tree, tint and lamella id) and the distance to the glue line. Collects woodPaths_.
+void TileRenderer::locateBoards() {
+    woodPaths_.clear();
+    for (uint32_t i = 0; i < paths_.size(); ++i) {
+        PathState& path = paths_[i];
         if (!path.alive || !path.hit.hit || path.hit.isLight) continue;
         const SceneObject& object = scene_.objects[path.hit.index];
         path.material = object.material;
@@ -448,463 +270,140 @@ void TileRenderer::resolveHits(std::vector<PathState>& paths, TileAovs& aovs,
                 path.glueDistance = object.layout->glueDistance(local);
             }
         }
-        if (scene_.materials[path.material].type == MaterialType::Wood) woodPaths.push_back(i);
+        if (scene_.materials[path.material].type == MaterialType::Wood) woodPaths_.push_back(i);
     }
-    shadeWood(paths, woodPaths);
-    shared_.wood = nullptr;  // results of earlier bounces may reuse these addresses
-    shadows_.clear();
-    finished_.assign(paths.size(), 0);
-    for (uint32_t i = 0; i < paths.size(); ++i) {
-        PathState& path = paths[i];
-        if (!path.alive) continue;
-        const WoodSurfaceSample* wood = woodSlot_[i] >= 0 ? &woodResults_[woodSlot_[i]] : nullptr;
-        shade(i, path, pixelIds[path.pixel], wood, aovs);
-    }
-    traceShadows(paths, aovs);
 }
 
 /// The light samples of this bounce, in 16-ray packets; then, in path order, each path gets its
 /// unoccluded contributions (in light order) and finished paths go into the film: the same
 /// sums in the same order as tracing each shadow ray where it was made.
-void TileRenderer::traceShadows(std::vector<PathState>& paths, TileAovs& aovs) {
-    Ray rays[16];
-    double tMax[16];
-    bool blocked[16];
-    for (size_t base = 0; base < shadows_.size(); base += 16) {
-        int count = static_cast<int>(std::min<size_t>(16, shadows_.size() - base));
-        for (int k = 0; k < count; ++k) {
-            rays[k] = shadows_[base + k].ray;
-            tMax[k] = shadows_[base + k].tMax;
-        }
-        rays_.occluded16(rays, tMax, count, blocked);
-        for (int k = 0; k < count; ++k) shadows_[base + k].blocked = blocked[k];
-    }
+void TileRenderer::traceShadows(TileAovs& aovs) {
+    traceShadowRays(rays_, shadows_);
     rayCount_ += shadows_.size();
     size_t next = 0;
-    for (uint32_t i = 0; i < paths.size(); ++i) {
-        PathState& path = paths[i];
+    for (uint32_t i = 0; i < paths_.size(); ++i) {
+        PathState& path = paths_[i];
         for (; next < shadows_.size() && shadows_[next].path == i; ++next)
             if (!shadows_[next].blocked)
                 path.radiance = path.radiance + shadows_[next].contribution;
         if (!finished_[i]) continue;
         aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
-        if (!aovs.halfCount.empty() && path.sample < aovs.halfCount[path.pixel])
-            aovs.rgbHalf[path.pixel] = aovs.rgbHalf[path.pixel] + path.radiance;
+        sampling_.addSample(path.pixel, path.sample, path.radiance);
     }
 }
 
-void TileRenderer::shadeWood(std::vector<PathState>& paths,
-                             const std::vector<uint32_t>& woodPaths) {
-    woodSlot_.assign(paths.size(), -1);
-    woodResults_.clear();
-    // Coherent batches: by material, then board, then path order (pixel-major).
-    std::vector<uint32_t>& order = woodOrder_;
-    order.resize(woodPaths.size());
-    std::iota(order.begin(), order.end(), 0u);
-    auto before = [&](uint32_t a, uint32_t b) {
-        const PathState& pa = paths[woodPaths[a]];
-        const PathState& pb = paths[woodPaths[b]];
-        if (pa.material != pb.material) return pa.material < pb.material;
-        return pa.treeFromObject < pb.treeFromObject;
-    };
-    // Often one board fills the tile: then the order is already right.
-    if (!std::is_sorted(order.begin(), order.end(), before))
-        std::stable_sort(order.begin(), order.end(), before);
-    size_t begin = 0;
-    while (begin < order.size()) {
-        const PathState& first = paths[woodPaths[order[begin]]];
-        size_t end = begin + 1;
-        while (end < order.size()) {
-            const PathState& p = paths[woodPaths[order[end]]];
-            if (p.material != first.material || p.treeFromObject != first.treeFromObject) break;
-            ++end;
-        }
-        const WoodShader& shader = *scene_.materials[first.material].wood;
-        const RigidTransform treeFromWorld =
-            (*first.treeFromObject) * first.worldFromObject->inverse();
-        const bool camera = first.depth == 0;
-        size_t n = end - begin;
-        woodPoints_.resize(n);
-        woodFootprints_.resize(camera ? n : 0);
-        batchPixel_.resize(n);
-        // A camera sample's footprint: where the neighbouring pixels' rays (scaled to the
-        // sample's share of the pixel) meet the hit's plane.
-        auto footprintOf = [&](size_t k) -> SurfaceFootprint {
-            const PathState& p = paths[woodPaths[order[begin + k]]];
-            const Vec3& n0 = p.hit.geometricNormal;
-            auto onPlane = [&](const Ray& r) {
-                double den = dot(n0, r.direction);
-                if (std::abs(den) < 1e-12) return p.hit.position;
-                double t = dot(n0, p.hit.position - r.origin) / den;
-                return r.origin + r.direction * t;
-            };
-            CameraRay c = cameraRay(p, pixelIds_[p.pixel]);
-            return {treeFromWorld.vector(onPlane(c.rayX) - p.hit.position),
-                    treeFromWorld.vector(onPlane(c.rayY) - p.hit.position), 0,
-                    treeFromWorld.vector(n0)};
-        };
-        for (size_t k = 0; k < n; ++k) {
-            const PathState& p = paths[woodPaths[order[begin + k]]];
-            batchPixel_[k] = p.pixel;
-            woodPoints_[k] = treeFromWorld.point(p.hit.position);
-            // Footprints for the first sample of each pixel (shadeCameraWood) and for samples
-            // near glue lines.
-            if (camera && (k == 0 || batchPixel_[k] != batchPixel_[k - 1] || p.glue))
-                woodFootprints_[k] = footprintOf(k);
-        }
-        woodBatch_.resize(n);
-        if (camera) {
-            shadeCameraWood(shader, n);
-            // Knots are not prefiltered: a knot's rim would alias if a whole pixel took one
-            // evaluation, so pixels on a knot's edge are shaded per quarter pixel: each sample
-            // takes the evaluation of its quadrant (centroid, half-pixel footprint).
-            refineEntries_.assign(n, -1);
-            refinePoints_.clear();
-            refineFootprints_.clear();
-            const double half = 0.5 / differentialScale_;
-            for (size_t g = 0; g + 1 < groupStart_.size(); ++g) {
-                const double knot = groupResults_[g].knot;
-                const uint32_t g0 = groupStart_[g], g1 = groupStart_[g + 1];
-                if (knot <= kKnotRefinement || knot >= 1 - kKnotRefinement || g1 - g0 < 2) continue;
-                int32_t slotOfQuadrant[4] = {-1, -1, -1, -1};
-                uint32_t count[4] = {0, 0, 0, 0};
-                for (uint32_t k = g0; k < g1; ++k) {
-                    const PathState& p = paths[woodPaths[order[begin + k]]];
-                    int q = (p.filmX - std::floor(p.filmX) >= 0.5) +
-                            2 * (p.filmY - std::floor(p.filmY) >= 0.5);
-                    if (slotOfQuadrant[q] < 0) {
-                        slotOfQuadrant[q] = static_cast<int32_t>(refinePoints_.size());
-                        refinePoints_.push_back({0, 0, 0});
-                        refineFootprints_.push_back({woodFootprints_[g0].dpdx * half,
-                                                     woodFootprints_[g0].dpdy * half, 0,
-                                                     woodFootprints_[g0].normal});
-                    }
-                    Vec3& sum = refinePoints_[static_cast<size_t>(slotOfQuadrant[q])];
-                    sum = sum + woodPoints_[k];
-                    ++count[q];
-                    refineEntries_[k] = slotOfQuadrant[q];
-                }
-                for (int q = 0; q < 4; ++q)
-                    if (count[q] > 0) {
-                        Vec3& sum = refinePoints_[static_cast<size_t>(slotOfQuadrant[q])];
-                        sum = sum * (1.0 / count[q]);
-                    }
-            }
-            refineResults_.resize(refinePoints_.size());
-            if (!refinePoints_.empty())
-                shader.evaluateSurface(refinePoints_, refineFootprints_, refineResults_,
-                                       woodScratch_);
-        } else {
-            woodPlain_.resize(n);
-            shader.evaluate(woodPoints_, woodPlain_, woodScratch_.growth, woodScratch_.samples);
-            for (size_t k = 0; k < n; ++k) {
-                WoodSurfaceSample& w = woodBatch_[k];
-                w = WoodSurfaceSample{};
-                w.albedo = woodPlain_[k].albedo;
-                w.coverage = woodPlain_[k].coverage;
-                w.T = woodPlain_[k].T;
-                w.knot = woodPlain_[k].knot;
-                w.roughness = shader.finish().coatRoughness;
-            }
-        }
-        const RigidTransform worldFromTree = treeFromWorld.inverse();
-        for (size_t k = 0; k < n; ++k) {
-            PathState& p = paths[woodPaths[order[begin + k]]];
-            if (p.glue) {
-                double footprint = 0;
-                if (camera)
-                    footprint = std::sqrt(std::max(lengthSquared(woodFootprints_[k].dpdx),
-                                                   lengthSquared(woodFootprints_[k].dpdy)));
-                p.glueCover = glueCoverage(p.glueDistance, p.glue->width, footprint);
-            }
-        }
-        // Results in world space (directions back from tree space), one per camera pixel
-        // group or per indirect hit; each path points at its result.
-        auto keep = [&](WoodSurfaceSample w) {
-            w.fibre = worldFromTree.vector(w.fibre);
-            w.reliefGradient = worldFromTree.vector(w.reliefGradient);
-            woodResults_.push_back(w);
-            return static_cast<int32_t>(woodResults_.size() - 1);
-        };
-        if (camera) {
-            // Quadrant results first, so each is kept once.
-            refineSlots_.resize(refineResults_.size());
-            for (size_t r = 0; r < refineResults_.size(); ++r)
-                refineSlots_[r] = keep(refineResults_[r]);
-            for (size_t g = 0; g + 1 < groupStart_.size(); ++g) {
-                const uint32_t g0 = groupStart_[g], g1 = groupStart_[g + 1];
-                const bool refined = refineEntries_[g0] >= 0;
-                int32_t slot = refined ? -1 : keep(groupResults_[g]);
-                for (uint32_t k = g0; k < g1; ++k)
-                    woodSlot_[woodPaths[order[begin + k]]] =
-                        refined ? refineSlots_[static_cast<size_t>(refineEntries_[k])] : slot;
-            }
-        } else {
-            for (size_t k = 0; k < n; ++k)
-                woodSlot_[woodPaths[order[begin + k]]] = keep(woodBatch_[k]);
-        }
-        begin = end;
+/// One path vertex: the light the ray found by itself, or a surface: its BSDF (the material
+/// step), next-event estimation, and the bounce that continues the path.
+void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
+    if (!path.hit.hit || path.hit.isLight) {
+        addEmission(path, aovs);
+        finish(index, path);
+        return;
     }
-}
-
-/// The wood seen by camera samples is shaded once per pixel and board: at the mean of the
-/// samples' tree-space points, filtered over the whole pixel's footprint (the per-sample
-/// differentials are 1 / differentialScale_ shorter). The ring profile is prefiltered over
-/// that footprint, so this is the pixel's box-filtered wood, as the mean of the samples' own
-/// (smaller-footprint) evaluations would be, at 1/spp of the cost. Light, visibility and
-/// geometry stay sampled per sample. Batch entries of one pixel are adjacent (pixel-major).
-void TileRenderer::shadeCameraWood(const WoodShader& shader, size_t n) {
-    groupStart_.clear();
-    groupPoints_.clear();
-    groupFootprints_.clear();
-    const double widen = 1 / differentialScale_;
-    for (size_t k = 0; k < n; ++k) {
-        if (k == 0 || batchPixel_[k] != batchPixel_[k - 1]) {
-            groupStart_.push_back(static_cast<uint32_t>(k));
-            groupPoints_.push_back({0, 0, 0});
-            groupFootprints_.push_back({woodFootprints_[k].dpdx * widen,
-                                        woodFootprints_[k].dpdy * widen, 0,
-                                        woodFootprints_[k].normal});
-        }
-        groupPoints_.back() = groupPoints_.back() + woodPoints_[k];
-    }
-    groupStart_.push_back(static_cast<uint32_t>(n));
-    const size_t groups = groupPoints_.size();
-    for (size_t g = 0; g < groups; ++g)
-        groupPoints_[g] = groupPoints_[g] * (1.0 / (groupStart_[g + 1] - groupStart_[g]));
-    groupResults_.resize(groups);
-    shader.evaluateSurface(groupPoints_, groupFootprints_, groupResults_, woodScratch_);
-}
-
-void TileRenderer::shade(uint32_t index, PathState& path, uint64_t pixelId,
-                         const WoodSurfaceSample* wood, TileAovs& aovs) {
-    const RenderSettings& settings = scene_.settings;
-    const uint64_t dim = 4 + path.depth * kDimsPerBounce;
-    const uint64_t lightDims = 4;
-    auto rnd = [&](uint64_t k) { return randomAt(settings.seed, pixelId, path.sample, dim + k); };
-    // Dimensions of this bounce: 0-3 BSDF sampling and roulette, then two per light.
     const Vec3 wo = -path.ray.direction;
     const bool camera = path.depth == 0;
 
-    if (!path.hit.hit || path.hit.isLight) {
-        Rgb le;
-        double lightPdf = 0;
-        if (!path.hit.hit) {
-            if (env_) {
-                le = env_->environment->radiance(path.ray.direction);
-                if (!camera)
-                    lightPdf = env_->environment->pdf(path.ray.direction) *
-                               lightSelection_.probability(
-                                   static_cast<size_t>(env_ - scene_.lights.data()),
-                                   path.lastPosition, path.lastNormal);
-            }
-        } else {
-            const Light& l = scene_.lights[path.hit.index];
-            le = rectLightRadiance(l, path.ray.direction);
-            if (!camera)
-                lightPdf =
-                    rectLightPdf(l, path.ray.direction, path.hit.distance) *
-                    lightSelection_.probability(path.hit.index, path.lastPosition, path.lastNormal);
-            if (camera) {
-                aovs.hits[path.pixel] += 1;
-                aovs.depth[path.pixel] +=
-                    path.hit.distance * dot(path.ray.direction, camera_.forward());
-                aovs.normal[path.pixel] += path.hit.geometricNormal;
-            }
-        }
-        double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
-        path.radiance = path.radiance + multiply(path.throughput, le) * w;
-        path.alive = false;
-        finished_[index] = 1;
-        return;
-    }
-
     // The surface: normals facing the incoming ray.
     const Material& material = scene_.materials[path.material];
+    const WoodSurfaceSample* wood = woodHits_.at(index);
     Vec3 ng = path.hit.geometricNormal;
     Vec3 ns = path.hit.shadingNormal;
     if (dot(ng, wo) < 0) ng = -ng;
     if (dot(ns, ng) < 0) ns = -ns;
-
-    // Camera samples of one pixel that see the same board face share its shading state: the
-    // wood was evaluated once for them (shadeCameraWood), so the layered BSDF, the bumped normal
-    // and the frame are the same; so is the BSDF's value towards a distant light, up to the
-    // pixel's spread of view directions. Each sample keeps its own light sample and shadow ray.
+    // The material step, once for the camera samples of a pixel that see one board face.
     const bool shareable = camera && material.type == MaterialType::Wood && wood != nullptr &&
                            !(path.glue && path.glueCover > 0);
-    const bool reuse = shareable && shared_.wood == wood && shared_.ng == ng;
-    SurfaceBsdf bsdf;
-    AxisFrame frame;
-    if (reuse) {
-        bsdf = shared_.bsdf;
-        ns = shared_.ns;
-        frame = shared_.frame;
-    } else {
-        Vec3 texturedFibre;
-        if (material.type == MaterialType::Wood) {
-            const Finish& finish = material.wood->finish();
-            if (wood->coverage > 0) {
-                bsdf.base = multiply(wood->albedo, path.boardTint);
-                bsdf.fibreStrength = finish.fibreStrength;
-                bsdf.fibreWidth = finish.fibreWidth;
-            } else {
-                // Past the felled log's wood: the shader's bark where it drew one (camera
-                // hits), the plain bark colour otherwise.
-                bsdf.base = wood->albedo == Rgb{} ? kBarkAlbedo : wood->albedo;
-            }
-            if (path.glue && path.glueCover > 0) {
-                const double* g = path.glue->colour;
-                bsdf.base = mix(bsdf.base, Rgb{g[0], g[1], g[2]}, path.glueCover);
-                bsdf.fibreStrength *= 1 - path.glueCover;
-            }
-            bsdf.coatWeight = finish.coatWeight;
-            bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
-            bsdf.ior = finish.coatIor;
-            // Relief: tilt the normal against the height gradient's part along the surface.
-            Vec3 g = wood->reliefGradient;
-            Vec3 bumped = normalize(ns - (g - ns * dot(g, ns)));
-            if (dot(bumped, wo) > 0) ns = bumped;
-        } else if (material.type == MaterialType::Textured) {
-            // Baked wood maps: the same layered surface, its inputs read from the textures in the
-            // tangent frame of the uv layout (tangent +u, bitangent +v).
-            const Finish& finish = material.finish;
-            Vec3 c = material.baseColourMap->lookup3(path.hit.u, path.hit.v);
-            bsdf.base = {c.x, c.y, c.z};
-            bsdf.coatWeight = finish.coatWeight;
-            bsdf.coatAlpha = std::max(finish.coatRoughness, path.minRoughness);
-            bsdf.ior = finish.coatIor;
-            Vec3 tangent = normalize(path.hit.dpdu - ns * dot(ns, path.hit.dpdu));
-            Vec3 bitangent = cross(ns, tangent);
-            if (dot(bitangent, path.hit.dpdv) < 0) bitangent = -bitangent;
-            auto fromTangentSpace = [&](const ImageTexture& map) {
-                Vec3 e = map.lookup3(path.hit.u, path.hit.v) * 2 - Vec3{1, 1, 1};
-                return tangent * e.x + bitangent * e.y + ns * e.z;
-            };
-            if (lengthSquared(tangent) > 0) {
-                if (material.normalMap) {
-                    Vec3 bumped = normalize(fromTangentSpace(*material.normalMap));
-                    if (dot(bumped, wo) > 0) ns = bumped;
-                }
-                if (material.fibreMap) {
-                    texturedFibre = normalize(fromTangentSpace(*material.fibreMap));
-                    bsdf.fibreStrength = finish.fibreStrength;
-                    bsdf.fibreWidth = finish.fibreWidth;
-                }
-            }
-        } else {
-            bsdf.base = material.colour;
-            if (material.type == MaterialType::Glossy) {
-                bsdf.coatWeight = 1;
-                bsdf.coatAlpha = std::max(material.roughness, path.minRoughness);
-            } else if (material.type == MaterialType::Metal) {
-                bsdf.metal = true;
-                bsdf.metalF0 = material.colour;
-                bsdf.metalAlpha = std::max(material.roughness, path.minRoughness);
-            }
-        }
-        frame = AxisFrame(ns);
-        if (wood && lengthSquared(wood->fibre) > 0) bsdf.fibre = frame.toLocal(wood->fibre);
-        if (lengthSquared(texturedFibre) > 0) bsdf.fibre = frame.toLocal(texturedFibre);
-        if (shareable) {
-            shared_.wood = wood;
-            shared_.ng = ng;
-            shared_.ns = ns;
-            shared_.bsdf = bsdf;
-            shared_.frame = frame;
-            shared_.lightValue.assign(scene_.lights.size(), Rgb{-1, -1, -1});
-        }
-    }
-    const Vec3 woLocal = frame.toLocal(wo);
+    const WoodHits::Evaluation evaluation = woodHits_.evaluation(index);
+    const SurfaceShading* kept = shareable ? shared_.find(evaluation, ng) : nullptr;
+    const SurfaceShading surface =
+        kept ? *kept
+             : materialBsdf(material, {.hit = &path.hit,
+                                       .wo = wo,
+                                       .ns = ns,
+                                       .wood = wood,
+                                       .boardTint = path.boardTint,
+                                       .glue = path.glue,
+                                       .glueCover = path.glueCover,
+                                       .minRoughness = path.minRoughness});
+    if (shareable && !kept) shared_.keep(evaluation, ng, surface, scene_.lights.size());
+    const Vec3 woLocal = surface.frame.toLocal(wo);
 
     if (camera) {
-        aovs.hits[path.pixel] += 1;
-        aovs.albedo[path.pixel] = aovs.albedo[path.pixel] + bsdf.base;
-        aovs.normal[path.pixel] += ns;
-        aovs.depth[path.pixel] += path.hit.distance * dot(path.ray.direction, camera_.forward());
-        if (wood) {
-            aovs.woodHits[path.pixel] += 1;
-            aovs.growthTime[path.pixel] += wood->T;
-            aovs.knot[path.pixel] += wood->knot;
-        }
+        aovs.addSurfaceHit(path.pixel, surface.bsdf.base, surface.ns,
+                           path.hit.distance * dot(path.ray.direction, camera_.forward()));
+        if (wood) aovs.addWoodHit(path.pixel, wood->T, wood->knot);
         if (path.sample == 0) aovs.lamella[path.pixel] = path.lamella;
     }
 
-    // Next-event estimation: one sample of every light in lightSelection_.everyVertex() (with a
-    // few lights all of them: far less noisy than picking one of a sun and a sky at random),
-    // and with many local lights one more, picked by its importance here, its sample divided by
-    // the odds of picking it. Sampled light k takes the random pair at lightDims + 2k; the pick
-    // takes the dimension after the last pair.
-    const bool continues = path.depth + 1 < settings.maxDepth;
-    if (woLocal.z > 0) {
-        const std::vector<uint32_t>& everyVertex = lightSelection_.everyVertex();
-        size_t picked = scene_.lights.size();
-        double pickedProbability = 1;
-        if (lightSelection_.picksOne())
-            picked = lightSelection_.select(path.hit.position, ng,
-                                            rnd(lightDims + kLightDims * (everyVertex.size() + 1)),
-                                            pickedProbability, lightCdf_);
-        const size_t sampled = everyVertex.size() + (picked < scene_.lights.size());
-        for (size_t k = 0; k < sampled; ++k) {
-            const size_t li = k < everyVertex.size() ? everyVertex[k] : picked;
-            const double selected = k < everyVertex.size() ? 1 : pickedProbability;
-            const Light& light = scene_.lights[li];
-            LightSample ls;
-            uint64_t d = lightDims + kLightDims * k;
-            const auto [u, v] = pairAt(settings.seed, pixelId, path.sample, dim + d);
-            if (!sampleLight(light, path.hit.position, u, v, ls) || dot(ls.direction, ng) <= 0)
-                continue;
-            Vec3 wiLocal = frame.toLocal(ls.direction);
-            // Shared only towards distant lights, whose direction is the same for every
-            // sample; other lights are sampled per sample, and their pdf goes with their own f.
-            const bool shareLight = shareable && light.type == LightType::Distant;
-            Rgb f;
-            if (shareLight && shared_.lightValue[li].r >= 0) {
-                f = shared_.lightValue[li];
-            } else {
-                f = bsdf.evaluate(woLocal, wiLocal);
-                if (shareLight) shared_.lightValue[li] = f;
-            }
-            if (isBlack(f) || isBlack(ls.radiance)) continue;
-            Ray shadow{offsetOrigin(path.hit.position, ng, ls.direction), ls.direction};
-            double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
-            // MIS only if BSDF sampling can also find this light (not at the last vertex).
-            const double pdf = ls.pdf * selected;
-            double w = ls.delta || !continues ? 1 : powerHeuristic(pdf, bsdf.pdf(woLocal, wiLocal));
-            Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * w / pdf);
-            // Added by traceShadows if nothing blocks the light.
-            shadows_.push_back({index, shadow, tMax, multiply(path.throughput, contribution)});
-        }
-    }
+    // Next-event estimation: its shadow rays are traced with the others of this bounce.
+    const BounceRandom random(pixelKeys_[path.pixel], path.sample, path.depth);
+    const LitVertex vertex{.position = path.hit.position,
+                           .ng = ng,
+                           .surface = &surface,
+                           .woLocal = woLocal,
+                           .throughput = path.throughput,
+                           .continues = path.depth + 1 < scene_.settings.maxDepth};
+    directLight_.sample(vertex, random, shareable ? shared_.lightValues() : std::span<Rgb>(), index,
+                        shadows_);
 
-    // Continue the path.
+    if (!bounce(path, surface, ng, woLocal, random)) finish(index, path);
+}
+
+/// Light the path's ray found by itself: the environment or a rectangle light's face. Past the
+/// camera it is weighed against next-event estimation at the vertex the ray left (MIS).
+void TileRenderer::addEmission(PathState& path, TileAovs& aovs) const {
+    const bool camera = path.depth == 0;
+    Rgb le;
+    double lightPdf = 0;
+    if (!path.hit.hit) {
+        le = directLight_.environmentRadiance(path.ray.direction);
+        if (!camera)
+            lightPdf =
+                directLight_.environmentPdf(path.ray.direction, path.lastPosition, path.lastNormal);
+    } else {
+        const Light& l = scene_.lights[path.hit.index];
+        le = rectLightRadiance(l, path.ray.direction);
+        if (!camera)
+            lightPdf = directLight_.rectPdf(path.hit.index, path.ray.direction, path.hit.distance,
+                                            path.lastPosition, path.lastNormal);
+        if (camera)
+            aovs.addEmitterHit(path.pixel,
+                               path.hit.distance * dot(path.ray.direction, camera_.forward()),
+                               path.hit.geometricNormal);
+    }
+    double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
+    path.radiance = path.radiance + multiply(path.throughput, le) * w;
+}
+
+/// Continues the path in a direction sampled from the BSDF, with Russian roulette from the
+/// third vertex on; false if the path ends here.
+bool TileRenderer::bounce(PathState& path, const SurfaceShading& surface, const Vec3& ng,
+                          const Vec3& woLocal, const BounceRandom& random) const {
     SurfaceBsdf::Sample bs;
-    bool more = path.depth + 1 < settings.maxDepth && [&] {
-        const auto [u, v] = pairAt(settings.seed, pixelId, path.sample, dim + 1);
-        return bsdf.sample(woLocal, rnd(0), u, v, bs);
+    bool more = path.depth + 1 < scene_.settings.maxDepth && [&] {
+        const auto [u, v] = random.pair(dimension::kBsdfDirection);
+        return surface.bsdf.sample(woLocal, random.at(dimension::kBsdfLobe), u, v, bs);
     }();
-    Vec3 wi = more ? frame.toWorld(bs.wi) : Vec3{};
+    Vec3 wi = more ? surface.frame.toWorld(bs.wi) : Vec3{};
     if (more && dot(wi, ng) <= 0) more = false;
     if (more) {
         path.throughput = multiply(path.throughput, bs.weight);
         if (path.depth >= 2) {
             double q = std::min(0.95, maxComponent(path.throughput));
-            if (rnd(3) >= q)
+            if (random.at(dimension::kRoulette) >= q)
                 more = false;
             else
                 path.throughput = path.throughput * (1 / q);
         }
     }
-    if (!more || isBlack(path.throughput)) {
-        path.alive = false;
-        finished_[index] = 1;
-        return;
-    }
+    if (!more || isBlack(path.throughput)) return false;
     path.bsdfPdf = bs.pdf;
     path.lastPosition = path.hit.position;
     path.lastNormal = ng;
     if (bs.roughness >= 1) path.minRoughness = kRegularisedRoughness;
     path.ray = {offsetOrigin(path.hit.position, ng, wi), wi};
     ++path.depth;
+    return true;
 }
 
 }  // namespace

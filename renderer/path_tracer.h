@@ -11,6 +11,11 @@
 ///
 /// Wood at the camera hit gets the full surface response (filtered rings, fibre highlight,
 /// relief bump); at later bounces, where the light is already blurred, only its albedo.
+///
+/// path_tracer.cpp keeps the loop; the parts live beside what they are about (listed in
+/// renderer/README.md): the material step in material_bsdf.h, next-event estimation in
+/// direct_light.h, the wood in wood_hits.h, adaptive sampling in adaptive_sampling.h, the
+/// film's tile sums in film_tile.h, the random dimensions in sample_dimensions.h.
 
 #include <cstdint>
 

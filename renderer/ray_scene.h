@@ -3,6 +3,8 @@
 /// box per glued block; the lamella is found from the hit point later), rectangle lights as
 /// two emitting triangles. Embree stays behind this file (pimpl).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 
@@ -22,6 +24,13 @@ struct SurfaceHit {
     bool isLight = false;  ///< a rectangle light was hit
     uint32_t index = 0;    ///< scene object index, or light index if isLight
 };
+
+/// Ray origin nudged off the surface at p along its geometric normal ng, to the side of
+/// `towards`: a ray leaving the surface does not find it again through rounding.
+inline Vec3 offsetOrigin(const Vec3& p, const Vec3& ng, const Vec3& towards) {
+    double scale = 1e-5 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+    return p + ng * (dot(ng, towards) > 0 ? scale : -scale);
+}
 
 class RayScene {
 public:

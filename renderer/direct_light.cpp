@@ -1,0 +1,77 @@
+#include "renderer/direct_light.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace nenrin {
+
+namespace {
+
+bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
+
+}  // namespace
+
+DirectLight::DirectLight(const Scene& scene)
+    : scene_(scene),
+      env_(environmentLight(scene)),
+      selection_(scene.lights, scene.settings.lightSelection) {}
+
+void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
+                         std::span<Rgb> distantValues, uint32_t path, std::vector<ShadowRay>& out) {
+    if (!(v.woLocal.z > 0)) return;
+    const SurfaceBsdf& bsdf = v.surface->bsdf;
+    const AxisFrame& frame = v.surface->frame;
+    const std::vector<uint32_t>& everyVertex = selection_.everyVertex();
+    size_t picked = scene_.lights.size();
+    double pickedProbability = 1;
+    if (selection_.picksOne())
+        picked =
+            selection_.select(v.position, v.ng, random.at(dimension::lightPick(everyVertex.size())),
+                              pickedProbability, cdf_);
+    const size_t sampled = everyVertex.size() + (picked < scene_.lights.size());
+    for (size_t k = 0; k < sampled; ++k) {
+        const size_t li = k < everyVertex.size() ? everyVertex[k] : picked;
+        const double selected = k < everyVertex.size() ? 1 : pickedProbability;
+        const Light& light = scene_.lights[li];
+        LightSample ls;
+        const auto [u1, u2] = random.pair(dimension::lightPair(k));
+        if (!sampleLight(light, v.position, u1, u2, ls) || dot(ls.direction, v.ng) <= 0) continue;
+        Vec3 wiLocal = frame.toLocal(ls.direction);
+        // Shared only towards distant lights, whose direction is the same for every sample;
+        // other lights are sampled per sample, and their pdf goes with their own f.
+        const bool shareLight = !distantValues.empty() && light.type == LightType::Distant;
+        Rgb f;
+        if (shareLight && distantValues[li].r >= 0) {
+            f = distantValues[li];
+        } else {
+            f = bsdf.evaluate(v.woLocal, wiLocal);
+            if (shareLight) distantValues[li] = f;
+        }
+        if (isBlack(f) || isBlack(ls.radiance)) continue;
+        Ray shadow{offsetOrigin(v.position, v.ng, ls.direction), ls.direction};
+        double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
+        // MIS only if BSDF sampling can also find this light (not at the last vertex).
+        const double pdf = ls.pdf * selected;
+        double weight =
+            ls.delta || !v.continues ? 1 : powerHeuristic(pdf, bsdf.pdf(v.woLocal, wiLocal));
+        Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * weight / pdf);
+        out.push_back({path, shadow, tMax, multiply(v.throughput, contribution)});
+    }
+}
+
+void traceShadowRays(const RayScene& rays, std::span<ShadowRay> shadows) {
+    Ray packet[16];
+    double tMax[16];
+    bool blocked[16];
+    for (size_t base = 0; base < shadows.size(); base += 16) {
+        int count = static_cast<int>(std::min<size_t>(16, shadows.size() - base));
+        for (int k = 0; k < count; ++k) {
+            packet[k] = shadows[base + k].ray;
+            tMax[k] = shadows[base + k].tMax;
+        }
+        rays.occluded16(packet, tMax, count, blocked);
+        for (int k = 0; k < count; ++k) shadows[base + k].blocked = blocked[k];
+    }
+}
+
+}  // namespace nenrin

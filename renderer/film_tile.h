@@ -1,0 +1,63 @@
+#pragma once
+/// A tile's share of the film while its samples are rendered: per-pixel sums of each channel,
+/// which become the film's means once the tile is done. Each tile has its own, so threads never
+/// share a sum, and a pixel adds its samples in sample order: the image is the same bytes for
+/// any thread count.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "grain/rgb.h"
+#include "renderer/film.h"
+#include "util/vec3.h"
+
+namespace nenrin {
+
+struct TileAovs {
+    /// Per pixel of the tile (row-major): radiance over all samples; the rest over the samples
+    /// whose camera ray hit something (hits) or hit wood (woodHits).
+    std::vector<Rgb> rgb, albedo;
+    std::vector<Vec3> normal;
+    std::vector<double> hits, depth, woodHits, growthTime, knot;
+    std::vector<int32_t> lamella;  ///< the board the pixel's first sample hit, -1 if none
+
+    explicit TileAovs(size_t n)
+        : rgb(n),
+          albedo(n),
+          normal(n),
+          hits(n),
+          depth(n),
+          woodHits(n),
+          growthTime(n),
+          knot(n),
+          lamella(n, -1) {}
+
+    /// A camera ray that found an emitter's face: a hit, without albedo.
+    void addEmitterHit(uint32_t pixel, double viewDepth, const Vec3& geometricNormal) {
+        hits[pixel] += 1;
+        depth[pixel] += viewDepth;
+        normal[pixel] += geometricNormal;
+    }
+    /// A camera ray that found a surface.
+    void addSurfaceHit(uint32_t pixel, const Rgb& surfaceAlbedo, const Vec3& shadingNormal,
+                       double viewDepth) {
+        hits[pixel] += 1;
+        albedo[pixel] = albedo[pixel] + surfaceAlbedo;
+        normal[pixel] += shadingNormal;
+        depth[pixel] += viewDepth;
+    }
+    /// A camera ray that found wood.
+    void addWoodHit(uint32_t pixel, double T, double knotShare) {
+        woodHits[pixel] += 1;
+        growthTime[pixel] += T;
+        knot[pixel] += knotShare;
+    }
+
+    /// The means into the film's pixels of the tile at (x0, y0), tw wide and th high, each
+    /// pixel having taken samples[p] samples.
+    void writeInto(Film& film, int x0, int y0, int tw, int th,
+                   const std::vector<uint32_t>& samples) const;
+};
+
+}  // namespace nenrin
