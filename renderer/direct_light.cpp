@@ -5,11 +5,7 @@
 
 namespace nenrin {
 
-namespace {
-
-bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
-
-}  // namespace
+namespace {}  // namespace
 
 DirectLight::DirectLight(const Scene& scene)
     : scene_(scene),

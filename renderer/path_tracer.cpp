@@ -35,7 +35,6 @@ constexpr uint32_t kSamplesPerPass = 64;
 constexpr double kRegularisedRoughness = 0.3;
 
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
-bool isBlack(const Rgb& c) { return c.r <= 0 && c.g <= 0 && c.b <= 0; }
 
 /// The shading state shared by the camera samples of one pixel that see one board face: the
 /// wood was evaluated once for them (WoodHits), so the layered BSDF, the bumped normal and the

@@ -1,7 +1,7 @@
 #pragma once
 /// The integrator: unidirectional path tracing with next-event estimation and multiple
-/// importance sampling (power heuristic), Russian roulette past the third bounce, and a
-/// maximum depth.
+/// importance sampling (power heuristic), Russian roulette from the third vertex on (depth 2), and
+/// a maximum depth.
 ///
 /// Work is split into tiles of 16 x 16 pixels run in parallel (TBB). Inside a tile all samples
 /// of all pixels travel together, one bounce at a time, so that camera rays go to Embree in

@@ -18,6 +18,9 @@ struct Finish {
     double fibreWidth = 0.14;     ///< radians: Gaussian width beta of that highlight
     double bumpDepth = 4e-6;      ///< m: height of late wood above early wood
     double woodRoughness = 0.55;  ///< GGX alpha of the bare wood (reported to plugin hosts)
+
+    /// The GGX alpha of the surface a host sees: the coat's, or the bare wood's without one.
+    double surfaceRoughness() const { return coatWeight > 0 ? coatRoughness : woodRoughness; }
 };
 
 /// "matte" (sanded), "oiled", "varnished", "bare" (Lambert only), "brushed" (wire-brushed and

@@ -241,18 +241,19 @@ public:
                 s.footprints[i] = {{}, {}, footprints[begin + i], {}};
             s.samples.resize(n);
             shader_->evaluateSurface(s.points, s.footprints, s.samples, s.wood);
-            for (size_t i = 0; i < n; ++i) convert(s.samples[i], out[begin + i]);
+            for (size_t i = 0; i < n; ++i)
+                convert(s.samples[i], shader_->finish().surfaceRoughness(), out[begin + i]);
         }
     }
 
 private:
-    static void convert(const WoodSurfaceSample& w, nenrin_shading_result& o) {
+    static void convert(const WoodSurfaceSample& w, double roughness, nenrin_shading_result& o) {
         // The ABI's albedo is black outside the felled log (the host draws its own bark).
         const Rgb albedo = w.coverage > 0 ? w.albedo : Rgb{};
         o.albedo[0] = static_cast<float>(albedo.r);
         o.albedo[1] = static_cast<float>(albedo.g);
         o.albedo[2] = static_cast<float>(albedo.b);
-        o.roughness = static_cast<float>(w.roughness);
+        o.roughness = static_cast<float>(roughness);
         o.fibre[0] = static_cast<float>(w.fibre.x);
         o.fibre[1] = static_cast<float>(w.fibre.y);
         o.fibre[2] = static_cast<float>(w.fibre.z);

@@ -70,7 +70,6 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
     const ColourParams& colour = field_->params().colour;
     const double felled = field_->params().fellingTime;
     const LatewoodTiming& timing = field_->latewoodTiming();
-    const double coatAlpha = finish_.coatWeight > 0 ? finish_.coatRoughness : finish_.woodRoughness;
     for (size_t i = 0; i < n; ++i) {
         const GrowthSample& s = scratch.samples[4 * i];
         WoodSurfaceSample& o = out[i];
@@ -145,7 +144,6 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         double fade = 1 / (1 + width * width * 4);
         o.reliefGradient = o.gradientT * (finish_.bumpDepth * slope * fade) + anatomyRelief;
         o.meanReliefGradient = o.gradientT * (finish_.bumpDepth * slope) + anatomyRelief;
-        o.roughness = coatAlpha;
     }
 }
 

@@ -5,7 +5,7 @@
 ///  - evaluateSurface(): the full surface response: the same plus the gradient of T (forward
 ///    differences, three more evaluations per point), the fibre direction (the growth axis
 ///    bent into the ring surface, so fibres flow around knots), a late-wood relief gradient
-///    for bump mapping, the coat roughness, and the ring profile of eq. 6 box-filtered over
+///    for bump mapping, and the ring profile of eq. 6 box-filtered over
 ///    the pixel footprint (|grad T . dp/dx|) so distant boards show no moire.
 
 #include <span>
@@ -47,7 +47,6 @@ struct WoodSurfaceSample {
     double deadKnot = 0;         ///< dead part of the knot share
     double lateWood = 0;         ///< E of eq. 6, filtered
     double ringFilterWidth = 0;  ///< years of T under the footprint
-    double roughness = 0;        ///< GGX alpha of the finish's coat (bare wood if no coat)
     Vec3 fibre;                  ///< unit fibre direction, tree space
     Vec3 gradientT;              ///< grad T, years per metre, tree space
     /// Gradient of the relief height (m/m, tree space): bump mapping tilts the normal by its

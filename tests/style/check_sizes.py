@@ -5,7 +5,9 @@ more than one step. Functions are found from braces (comments, strings and chara
 stripped): a block opened at namespace or class scope after a ')' is a function body, and
 lambdas count towards the function around them.
 
-Usage: check_sizes.py SOURCE_DIR"""
+Usage: check_sizes.py [--self-test] SOURCE_DIR
+--self-test first checks that the check finds a long function, a long file and a long lambda
+inside a function (and not a long class, namespace or initializer) in a made-up tree."""
 import pathlib
 import re
 import sys
@@ -86,8 +88,7 @@ def functions(text):
     return found
 
 
-def main():
-    root = pathlib.Path(sys.argv[1])
+def problems_in(root):
     problems = []
     for library in LIBRARIES:
         for path in sorted((root / library).rglob("*")):
@@ -102,6 +103,46 @@ def main():
                 if length > MAX_FUNCTION_LINES:
                     problems.append(f"{rel}:{start}: a function of {length} lines (at most "
                                     f"{MAX_FUNCTION_LINES}): {name}")
+    return problems
+
+
+def self_test():
+    """The check on a made-up tree: what it must find and what it must leave."""
+    import tempfile
+    body = "".join(f"    x += {i};  // a {{ brace }}}} in a comment\n" for i in range(99))
+    files = {
+        "util/long_function.cpp": "namespace n {\nint f(int x) {\n" + body + "    return x;\n}\n}\n",
+        "util/short_function.cpp": "int g(int x) {\n" + body[: len(body) // 2] + "    return x;\n}\n",
+        "util/long_file.h": "// line\n" * 601,
+        "util/class.h": "struct S {\n" + "    int a;\n" * 150 + "};\nconst int k[] = {\n"
+                        + "    1,\n" * 150 + "};\n",
+        "util/lambda.cpp": "void h() {\n    auto l = [](int x) {\n" + body + "        return x;\n"
+                           "    };\n}\n",
+        "util/strings.cpp": "const char* s = \"}}}}\";\nint m() {\n    return '{';\n}\n",
+    }
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, text in files.items():
+            path = pathlib.Path(tmp) / name
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(text)
+        found = problems_in(pathlib.Path(tmp))
+    expected = ["util/lambda.cpp:1: a function of 104", "util/long_file.h: 601 lines",
+                "util/long_function.cpp:2: a function of 102"]
+    missing = [e for e in expected if not any(p.startswith(e) for p in found)]
+    extra = [p for p in found if not any(p.startswith(e) for e in expected)]
+    if missing or extra:
+        print(f"self-test failed: missing {missing}, unexpected {extra}")
+        return False
+    return True
+
+
+def main():
+    args = sys.argv[1:]
+    if args and args[0] == "--self-test":
+        if not self_test():
+            return 1
+        args = args[1:]
+    problems = problems_in(pathlib.Path(args[0]))
     if problems:
         print("too large; split by concept or by step:\n  " + "\n  ".join(problems))
         return 1
