@@ -23,10 +23,19 @@ struct RingOptions {
 };
 
 void listSeries(const RingSeriesFile& file) {
-    fmt::print("{}: {} series\n", file.path, file.series.size());
+    size_t bad = 0;
+    for (const auto& s : file.series) bad += s.bad();
+    fmt::print("{}: {} series{}\n", file.path, file.series.size(),
+               bad ? fmt::format(", {} of them bad (marked BAD: --series refuses them)", bad)
+                   : std::string());
     fmt::print("{:<10} {:>6} {:>6} {:>6} {:>8} {:>9} {:>5} {:>6} {:>6}\n", "series", "first",
                "last", "rings", "unit mm", "mean mm", "CV", "AR1", "MS");
     for (const auto& s : file.series) {
+        if (s.bad()) {
+            fmt::print("{:<10} {:>6} BAD line {}: {}\n", s.id, s.firstYear, s.problemLine,
+                       s.problem);
+            continue;
+        }
         RingStatistics st = ringStatistics(s.widthsMm);
         fmt::print("{:<10} {:>6} {:>6} {:>6} {:>8} {:>9.3f} {:>5.2f} {:>6.2f} {:>6.2f}\n", s.id,
                    s.firstYear, s.lastYear(), s.widthsMm.size(), s.unitMm, st.mean, st.cv,

@@ -67,6 +67,12 @@ std::optional<DataLine> parseDataLine(std::string_view line) {
 
 std::string lineAt(int n) { return fmt::format("line {}", n); }
 
+/// A problem of one series at a line: the series is marked, the file read on.
+struct SeriesProblem {
+    int line;
+    std::string message;
+};
+
 /// Reads a Tucson file line by line. A series stays open from its first data line until its
 /// end marker, a line that stops before its decade's end or the next series' first line.
 class TucsonReader {
@@ -84,16 +90,13 @@ public:
             return;
         }
         if (open_ && d->id != current_.id) closeSeries(lastDataLine_);
-        if (!open_) openSeries(*d);
-        checkLineStart(*d);
-        appendValues(*d);
         lastDataLine_ = lineNo_;
-        if (raw_.back() == kMarkerThousandths) {
-            closeSeries(lineNo_);
-            return;
+        if (open_ && current_.bad()) return;  // the rest of a bad series
+        try {
+            readSeriesLine(*d);
+        } catch (const SeriesProblem& p) {
+            markBad(p);
         }
-        // A line that stops before its decade's end closes the series (999 is then the marker).
-        if ((nextYear_ % 10 + 10) % 10 != 0) closeSeries(lineNo_);
     }
 
     RingSeriesFile finish() {
@@ -105,6 +108,27 @@ public:
     }
 
 private:
+    /// A data line of the current series (opened by it if none is open).
+    void readSeriesLine(const DataLine& d) {
+        if (!open_) openSeries(d);
+        checkLineStart(d);
+        appendValues(d);
+        if (raw_.back() == kMarkerThousandths) {
+            closeSeries(lineNo_);
+            return;
+        }
+        // A line that stops before its decade's end closes the series (999 is then the marker).
+        if ((nextYear_ % 10 + 10) % 10 != 0) closeSeries(lineNo_);
+    }
+
+    /// The current series is bad: it keeps no widths, and its later lines are skipped.
+    void markBad(const SeriesProblem& p) {
+        current_.problem = p.message;
+        current_.problemLine = p.line;
+        current_.widthsMm.clear();
+        raw_.clear();
+    }
+
     /// Lines that are not data are the header while no data line came yet (at most 8 of them).
     void readHeaderLine(const std::string& line) {
         if (lastDataLine_ == 0 && file_.header.size() < 8) {
@@ -117,30 +141,27 @@ private:
     }
 
     void openSeries(const DataLine& d) {
-        if (ended_.count(d.id))
-            throw InputError(file_.path, lineAt(lineNo_),
-                             fmt::format("series '{}' starts again after its end marker: "
-                                         "expected each series once",
-                                         d.id));
         current_.id = d.id;
         current_.firstYear = static_cast<int>(d.year);
         current_.firstLine = lineNo_;
         nextYear_ = d.year;
         open_ = true;
+        if (ended_.count(d.id))
+            throw SeriesProblem{lineNo_, fmt::format("series '{}' starts again after its end "
+                                                     "marker: expected each series once",
+                                                     d.id)};
     }
 
     /// A line continues its series where the previous one stopped, at a decade year.
     void checkLineStart(const DataLine& d) const {
         if (d.year != nextYear_)
-            throw InputError(file_.path, lineAt(lineNo_),
-                             fmt::format("series '{}' jumps from year {} to {}: expected the "
-                                         "line to start at year {}",
-                                         d.id, nextYear_ - 1, d.year, nextYear_));
+            throw SeriesProblem{lineNo_, fmt::format("series '{}' jumps from year {} to {}: "
+                                                     "expected the line to start at year {}",
+                                                     d.id, nextYear_ - 1, d.year, nextYear_)};
         if (d.year != current_.firstYear && d.year % 10 != 0)
-            throw InputError(file_.path, lineAt(lineNo_),
-                             fmt::format("series '{}' continues at year {}: expected a line to "
-                                         "start at a decade year",
-                                         d.id, d.year));
+            throw SeriesProblem{lineNo_, fmt::format("series '{}' continues at year {}: expected "
+                                                     "a line to start at a decade year",
+                                                     d.id, d.year)};
     }
 
     void appendValues(const DataLine& d) {
@@ -148,43 +169,53 @@ private:
             long v = d.values[i];
             bool last = i + 1 == d.values.size();
             if (v == kMarkerThousandths && !last)
-                throw InputError(
-                    file_.path, lineAt(lineNo_),
-                    fmt::format("series '{}': values after the end marker -9999", d.id));
+                throw SeriesProblem{
+                    lineNo_, fmt::format("series '{}': values after the end marker -9999", d.id)};
             if (v < 0 && v != kMarkerThousandths)
-                throw InputError(file_.path, lineAt(lineNo_),
-                                 fmt::format("series '{}', year {}: width {} is negative: "
-                                             "expected a width >= 0 or an end marker",
-                                             d.id, nextYear_ + static_cast<long>(i), v));
+                throw SeriesProblem{lineNo_,
+                                    fmt::format("series '{}', year {}: width {} is "
+                                                "negative: expected a width >= 0 or an "
+                                                "end marker",
+                                                d.id, nextYear_ + static_cast<long>(i), v)};
             raw_.push_back(v);
         }
         nextYear_ += static_cast<long>(d.values.size());
     }
 
-    /// `n` is the line the series ended on (for the messages).
+    /// Ends the current series (`n`: the line it ended on, for the messages); a good one gets
+    /// its widths, a bad one stays listed with its problem.
     void closeSeries(int n) {
-        // The series' last value is its end marker; it sets the unit of the whole series.
+        if (!current_.bad()) {
+            try {
+                takeWidths(n);
+            } catch (const SeriesProblem& p) {
+                markBad(p);
+            }
+        }
+        ended_.insert(current_.id);
+        file_.series.push_back(std::move(current_));
+        current_ = RingSeries{};
+        raw_.clear();
+        open_ = false;
+    }
+
+    /// The series' widths in mm: its last value is its end marker, which sets the unit.
+    void takeWidths(int n) {
         long marker = raw_.empty() ? 0 : raw_.back();
         if (marker == kMarkerThousandths)
             current_.unitMm = 0.001;
         else if (marker == kMarkerHundredths)
             current_.unitMm = 0.01;
         else
-            throw InputError(file_.path, lineAt(n),
-                             fmt::format("series '{}' ends without its end marker: expected 999 "
-                                         "(0.01 mm) or -9999 (0.001 mm) after year {}",
-                                         current_.id, nextYear_ - 1));
+            throw SeriesProblem{n, fmt::format("series '{}' ends without its end marker: "
+                                               "expected 999 (0.01 mm) or -9999 (0.001 mm) after "
+                                               "year {}",
+                                               current_.id, nextYear_ - 1)};
         raw_.pop_back();
         if (raw_.empty())
-            throw InputError(
-                file_.path, lineAt(n),
-                fmt::format("series '{}' has no widths before its end marker", current_.id));
+            throw SeriesProblem{
+                n, fmt::format("series '{}' has no widths before its end marker", current_.id)};
         for (long v : raw_) current_.widthsMm.push_back(static_cast<double>(v) * current_.unitMm);
-        ended_.insert(current_.id);
-        file_.series.push_back(std::move(current_));
-        current_ = RingSeries{};
-        raw_.clear();
-        open_ = false;
     }
 
     RingSeriesFile file_;
@@ -199,8 +230,14 @@ private:
 }  // namespace
 
 const RingSeries& RingSeriesFile::find(const std::string& id) const {
-    for (const auto& s : series)
-        if (s.id == id) return s;
+    const RingSeries* found = nullptr;
+    for (const auto& s : series) {
+        if (s.id != id) continue;
+        // Refused at its line, as if the file held only this series.
+        if (s.bad()) throw InputError(path, lineAt(s.problemLine), s.problem);
+        if (!found) found = &s;
+    }
+    if (found) return *found;
     std::string ids;
     for (size_t i = 0; i < series.size() && i < 12; ++i) ids += (i ? ", " : "") + series[i].id;
     if (series.size() > 12) ids += fmt::format(", … ({} in all; --list shows them)", series.size());

@@ -20,6 +20,12 @@ struct RingSeries {
     double unitMm = 0.01;          ///< 0.01 (marker 999) or 0.001 (marker -9999)
     std::vector<double> widthsMm;  ///< one per year from firstYear, >= 0
     int firstLine = 0;             ///< 1-based line of the series' first data line
+    /// What is wrong with this series (a negative width, a year gap, no end marker...), empty
+    /// when nothing is; `problemLine` is where. A bad series has no widths: it is listed, never
+    /// used, and the file's other series are unaffected.
+    std::string problem;
+    int problemLine = 0;
+    bool bad() const { return !problem.empty(); }
     int lastYear() const { return firstYear + static_cast<int>(widthsMm.size()) - 1; }
 };
 
@@ -27,11 +33,14 @@ struct RingSeriesFile {
     std::string path;
     std::vector<std::string> header;  ///< the header lines as written
     std::vector<RingSeries> series;   ///< in file order
-    /// The series with this ID; throws InputError listing the IDs when there is none.
+    /// The good series with this ID; throws InputError listing the IDs when there is none, or
+    /// naming the line and the problem when that series is bad.
     const RingSeries& find(const std::string& id) const;
 };
 
-/// Throws InputError naming the file, the line and what was expected.
+/// Throws InputError naming the file, the line and what was expected when the file as a whole
+/// cannot be read (not text, a line that is no data line, no series); a problem inside one
+/// series marks that series (RingSeries::problem) and reading goes on.
 RingSeriesFile readTucsonRwl(const std::string& path);
 RingSeriesFile parseTucsonRwl(const std::string& text, const std::string& path);
 

@@ -116,8 +116,17 @@ TEST_F(TreeCliTest, BadRingSeriesAreReportedWithoutOutput) {
     fs::path bad = writeInput("bad.rwl",
                               "AB01    1990   100   200   300   400   500   600   700   800   "
                               "900  1000\nAB01    2000   100   -50   999\n");
-    expectInputError(run({"tree", "rings", bad.string(), "--list"}),
-                     {"bad.rwl", "line 2", "negative"});
+    // The list shows the bad series with its line; using it is the error.
+    RunResult listed = run({"tree", "rings", bad.string(), "--list"});
+    EXPECT_EQ(listed.exitCode, 0) << listed.err;
+    EXPECT_NE(listed.out.find("AB01         1990 BAD line 2: series 'AB01', year 2001: width -50 "
+                              "is negative"),
+              std::string::npos)
+        << listed.out;
+    expectInputError(
+        run({"tree", "rings", bad.string(), "--series", "AB01", "--skeleton",
+             skeletonScene("straight-trunk.json").string(), "-o", (out_ / "t.json").string()}),
+        {"bad.rwl", "line 2", "negative"});
     fs::path rwl = kSourceDir / "data/rings/co021.rwl";
     expectInputError(
         run({"tree", "rings", rwl.string(), "--series", "NOPE", "--skeleton",

@@ -116,9 +116,11 @@ TEST(RingSeries, WidthsInMetresScaledToAMean) {
     EXPECT_THROW(ringWidthsMetres(s, 0, "f"), InputError);
 }
 
+/// The error of reading the file and then using its series AB01 (a series' own problem
+/// appears when it is used; the file's, when it is read).
 std::string errorOf(const std::string& text) {
     try {
-        parseTucsonRwl(text, "bad.rwl");
+        parseTucsonRwl(text, "bad.rwl").find("AB01");
     } catch (const InputError& e) {
         return e.what();
     }
@@ -148,14 +150,46 @@ TEST(RingSeries, BadLinesNameTheLineAndWhatWasExpected) {
     expectError(std::string("AB01    1990   100\0  999\n", 25), "line 1", "NUL");
 }
 
-TEST(RingSeries, ARealFileWithANegativeWidthStopsAtItsLine) {
+TEST(RingSeries, ARealFileWithANegativeWidthStopsOnlyThatSeries) {
+    // wa082.rwl holds -999 for year 1900 of series 712011: that series is marked with its
+    // line and refused when used; the file's other 22 series are read as they are.
+    RingSeriesFile f = readTucsonRwl(kRings + "wa082.rwl");
+    ASSERT_EQ(f.series.size(), 23u);
+    EXPECT_TRUE(f.series[0].bad());
+    EXPECT_EQ(f.series[0].id, "712011");
+    EXPECT_EQ(f.series[0].problemLine, 13);
+    EXPECT_TRUE(f.series[0].widthsMm.empty());
+    for (size_t i = 1; i < f.series.size(); ++i) EXPECT_FALSE(f.series[i].bad()) << i;
+    EXPECT_EQ(f.find("712012").widthsMm.size(), 214u);
     try {
-        readTucsonRwl(kRings + "wa082.rwl");
-        FAIL() << "wa082.rwl has -999 for year 1900 of series 712011";
+        f.find("712011");
+        FAIL() << "a bad series was handed out";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("line 13"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("712011"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("width -999 is negative"), std::string::npos)
+            << e.what();
     }
+}
+
+TEST(RingSeries, OneBadValueInAThousandthsFileSparesTheOtherSeries) {
+    // The shape of ITRDB's th001.rwl: 0.001 mm units, one value -2599 in series PATUNG (1928).
+    const std::string text =
+        "PATUNG  1920   812   903   755   680   700   640   590   602   611   580\n"
+        "PATUNG  1930   575   560 -2599   540   530   520   510   500   490   480\n"
+        "PATUNG  1940   470   460 -9999\n"
+        "PATOLD  1921   900   880   860   840   820   800   780   760   740\n"
+        "PATOLD  1930   720   700 -9999\n";
+    RingSeriesFile f = parseTucsonRwl(text, "th.rwl");
+    ASSERT_EQ(f.series.size(), 2u);
+    EXPECT_TRUE(f.series[0].bad());
+    EXPECT_EQ(f.series[0].problemLine, 2);
+    EXPECT_NE(f.series[0].problem.find("year 1932: width -2599 is negative"), std::string::npos)
+        << f.series[0].problem;
+    const RingSeries& good = f.find("PATOLD");
+    EXPECT_EQ(good.firstYear, 1921);
+    EXPECT_EQ(good.widthsMm.size(), 11u);
+    EXPECT_DOUBLE_EQ(good.unitMm, 0.001);
+    EXPECT_THROW(f.find("PATUNG"), InputError);
 }
 
 TEST(RingSeries, DeviceFilesAndMissingFilesAreRefused) {
