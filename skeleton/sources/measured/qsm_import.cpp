@@ -45,6 +45,8 @@ enum Column {
     Parent,
     Extension,
     Branch,
+    Segment,      ///< SimpleForest / rTwig: a run of cylinders between forks
+    BranchOrder,  ///< 0 the stem, 1 its branches, ...
     ColumnCount
 };
 
@@ -100,12 +102,16 @@ const std::map<std::string, Column>& headerNames() {
                                                         {"next", Extension},
                                                         {"branch", Branch},
                                                         {"branchid", Branch},
-                                                        {"boc1", Branch}};
+                                                        {"boc1", Branch},
+                                                        {"segmentid", Segment},
+                                                        {"segment", Segment},
+                                                        {"branchorder", BranchOrder}};
     return names;
 }
 
 struct Cylinder {
     long long id = 0, parent = 0, extension = 0, branch = 0;
+    long long segment = -1, order = -1;  ///< -1: the file has no such column
     double radius = 0;
     Vec3 start, end;
     size_t line = 0;
@@ -222,6 +228,9 @@ private:
         if (!axis && !end)
             throw lineError(line, "the header needs either axis x/y/z with length, or end x/y/z");
         if (axis && end) column_[EX] = column_[EY] = column_[EZ] = -1;  // axis + length wins
+        // With segments (SimpleForest, rTwig's QSM.csv), branchID groups a first-order branch
+        // with everything on it, forks included: the chains are made from the segments.
+        if (column_[Segment] >= 0) column_[Branch] = -1;
     }
 
     double number(const std::vector<std::string>& cells, Column c, size_t line) const {
@@ -282,14 +291,15 @@ private:
         cyl.parent = integer(cells, Parent, line);
         cyl.extension = column_[Extension] >= 0 ? integer(cells, Extension, line) : 0;
         cyl.branch = column_[Branch] >= 0 ? integer(cells, Branch, line) : 0;
+        if (column_[Segment] >= 0) cyl.segment = integer(cells, Segment, line);
+        if (column_[BranchOrder] >= 0) cyl.order = integer(cells, BranchOrder, line);
         if (!index_.emplace(cyl.id, cylinders_.size()).second)
             throw lineError(line, fmt::format("cylinder {} appears twice", cyl.id));
         cylinders_.push_back(cyl);
     }
 
     /// Children per cylinder, the root, and a branch id for every cylinder (derived when the
-    /// file has no branch column: a cylinder continues its parent's branch if it is the
-    /// parent's extension, or its first child when extensions are not given).
+    /// file has no branch column, see continuesBranch).
     void linkCylinders() {
         children_.assign(cylinders_.size(), {});
         std::optional<size_t> root;
@@ -321,18 +331,40 @@ private:
                 if (std::find(order_.begin(), order_.end(), i) == order_.end())
                     throw lineError(cylinders_[i].line,
                                     "the cylinder is not connected to the stem (a parent cycle)");
-        if (column_[Branch] < 0) {
-            long long next = 1;
-            cylinders_[root_].branch = next++;
-            for (size_t i : order_) {
-                const auto& kids = children_[i];
-                for (size_t k = 0; k < kids.size(); ++k) {
-                    Cylinder& child = cylinders_[kids[k]];
-                    bool continues =
-                        column_[Extension] >= 0 ? cylinders_[i].extension == child.id : k == 0;
-                    child.branch = continues ? cylinders_[i].branch : next++;
-                }
+        if (column_[Branch] < 0) deriveBranches();
+    }
+
+    /// Which child of cylinder `i` carries its branch on: the parent's extension; with
+    /// segments, the child in the same segment, else at a fork the first child of the same
+    /// branch order (a side branch's order is one more); without either, the first child.
+    std::optional<size_t> continuingChild(size_t i) const {
+        const Cylinder& parent = cylinders_[i];
+        const std::vector<size_t>& kids = children_[i];
+        if (kids.empty()) return std::nullopt;
+        if (column_[Extension] >= 0) {
+            for (size_t k : kids)
+                if (cylinders_[k].id == parent.extension) return k;
+            return std::nullopt;
+        }
+        if (column_[Segment] >= 0) {
+            for (size_t k : kids)
+                if (cylinders_[k].segment == parent.segment) return k;
+            if (column_[BranchOrder] >= 0) {
+                for (size_t k : kids)
+                    if (cylinders_[k].order == parent.order) return k;
+                return std::nullopt;
             }
+        }
+        return kids.front();
+    }
+
+    void deriveBranches() {
+        long long next = 1;
+        cylinders_[root_].branch = next++;
+        for (size_t i : order_) {
+            const std::optional<size_t> continuing = continuingChild(i);
+            for (size_t k : children_[i])
+                cylinders_[k].branch = k == continuing ? cylinders_[i].branch : next++;
         }
     }
 

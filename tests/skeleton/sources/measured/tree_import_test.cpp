@@ -203,6 +203,41 @@ TEST(QsmImport, ZeroBasedExportsWithOtherColumnNamesImport) {
     EXPECT_DOUBLE_EQ(t.skeleton.node(0).radius, 0.20);
 }
 
+TEST(QsmImport, SegmentExportsTakeTheirChainsFromSegmentsNotBranchIds) {
+    // The shape of rTwig's and SimpleForest's QSM.csv, written here from their column list:
+    // branchID groups a first-order branch with everything on it, forks included (once
+    // refused: "branch 1 forks here"); the chains come from the segments, and at a fork the
+    // child segment of the parent's branch order carries the branch on.
+    const std::string header =
+        "ID,parentID,startX,startY,startZ,endX,endY,endZ,radius,length,growthLength,"
+        "averagePointDistance,segmentID,parentSegmentID,branchOrder,reverseBranchOrder,"
+        "branchID\n";
+    // ID parent  start        end          radius len  gl  apd seg pseg order rbo branch
+    const std::string rows =
+        "0,-1,0,0,0,0,0,1,0.20,1,9,0.01,0,-1,0,3,0\n"
+        "1,0,0,0,1,0,0,2,0.19,1,8,0.01,0,-1,0,3,0\n"
+        "2,1,0,0,2,0,0,3,0.18,1,7,0.01,0,-1,0,3,0\n"
+        "3,2,0,0,3,0,0,4,0.16,1,3,0.01,1,0,0,1,0\n"  // the stem goes on: segment 1
+        "4,3,0,0,4,0,0,5,0.14,1,2,0.01,1,0,0,1,0\n"
+        "5,4,0,0,5,0,0,6,0.12,1,1,0.01,1,0,0,1,0\n"
+        "6,2,0,0,3,0.5,0,3.5,0.06,0.7,3,0.01,2,0,1,2,1\n"  // a side branch: segment 2
+        "7,6,0.5,0,3.5,1,0,4,0.05,0.7,2,0.01,2,0,1,2,1\n"
+        "8,7,1,0,4,1.5,0,4.5,0.04,0.7,1,0.01,3,2,1,1,1\n"  // it goes on: segment 3
+        "9,7,1,0,4,1,0.5,4.5,0.03,0.7,1,0.01,4,2,2,1,1\n"  // a twig of order 2: segment 4
+        "10,9,1,0.5,4.5,1,1,5,0.02,0.7,1,0.01,4,2,2,1,1\n";
+    QsmTree t = parseQsm(header + rows, "QSM.csv");
+    const Skeleton& sk = t.skeleton;
+    EXPECT_EQ(t.cylinders, 11u);
+    ASSERT_EQ(sk.chains().size(), 3u);
+    EXPECT_EQ(sk.chain(0).segmentCount, 6u);  // the stem, across the fork
+    EXPECT_EQ(sk.chain(1).segmentCount, 3u);  // the side branch, across its fork
+    EXPECT_EQ(sk.chain(2).segmentCount, 2u);  // the twig
+    EXPECT_EQ(sk.chain(1).parentChain, 0);
+    EXPECT_EQ(sk.chain(2).parentChain, 1);
+    EXPECT_EQ(sk.chain(2).order, 2);
+    EXPECT_DOUBLE_EQ(sk.node(0).radius, 0.20);
+}
+
 std::string qsmError(const std::string& text) {
     try {
         parseQsm(text, "bad.txt");
