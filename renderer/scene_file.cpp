@@ -29,6 +29,17 @@ std::string resolve(Scene& scene, const std::string& relative) {
 }
 
 /// A colour: [r, g, b] or one number for grey, each >= 0.
+/// Loads a file the scene names at `key`: an error in that file also names the scene and the
+/// key that refers to it ("room.json: lights[0].map: sky.exr: cannot read the image ...").
+template <typename Load>
+auto loadReferenced(JsonReader& r, const std::string& key, Load load) {
+    try {
+        return load();
+    } catch (const InputError& e) {
+        throw r.error(key, e.what());
+    }
+}
+
 Rgb colourOf(JsonReader& r, const std::string& key, const Rgb& fallback) {
     if (!r.has(key)) return fallback;
     if (r.isNumber(key)) {
@@ -130,8 +141,11 @@ Light readLight(JsonReader& r, Scene& scene) {
         double intensity = r.nonNegative("intensity", 1);
         if (r.has("map")) {
             std::string map = resolve(scene, r.string("map", ""));
-            l.environment = std::make_shared<EnvironmentMap>(
-                EnvironmentMap::load(map, intensity, radians(r.number("rotation", 0))));
+            const double rotation = radians(r.number("rotation", 0));
+            l.environment = loadReferenced(r, "map", [&] {
+                return std::make_shared<EnvironmentMap>(
+                    EnvironmentMap::load(map, intensity, rotation));
+            });
             if (r.has("colour")) throw r.error("colour", "use either \"map\" or \"colour\"");
         } else {
             l.environment =
@@ -163,14 +177,15 @@ Material readMaterial(JsonReader& r, Scene& scene) {
     if (type == "textured") {
         m.type = MaterialType::Textured;
         if (!r.has("base_colour")) throw r.error("base_colour", "missing: the base colour map");
-        m.baseColourMap = std::make_shared<ImageTexture>(
-            ImageTexture::load(resolve(scene, r.string("base_colour", "")), 3));
-        if (r.has("normal"))
-            m.normalMap = std::make_shared<ImageTexture>(
-                ImageTexture::load(resolve(scene, r.string("normal", "")), 3));
-        if (r.has("fibre"))
-            m.fibreMap = std::make_shared<ImageTexture>(
-                ImageTexture::load(resolve(scene, r.string("fibre", "")), 3));
+        auto texture = [&](const std::string& key) {
+            const std::string file = resolve(scene, r.string(key, ""));
+            return loadReferenced(r, key, [&] {
+                return std::make_shared<ImageTexture>(ImageTexture::load(file, 3));
+            });
+        };
+        m.baseColourMap = texture("base_colour");
+        if (r.has("normal")) m.normalMap = texture("normal");
+        if (r.has("fibre")) m.fibreMap = texture("fibre");
         m.finish = readFinish(r);
     } else if (type == "wood") {
         m.type = MaterialType::Wood;
@@ -178,7 +193,14 @@ Material readMaterial(JsonReader& r, Scene& scene) {
         std::string skeleton = resolve(scene, r.string("skeleton", ""));
         std::string grain = r.has("grain") ? resolve(scene, r.string("grain", "")) : "";
         const Finish finish = readFinish(r);
-        const WoodTree& tree = woodTree(scene, skeleton, grain);
+        // An error in the skeleton or grain file also names the scene's key that refers to it.
+        const WoodTree* loaded = nullptr;
+        try {
+            loaded = &woodTree(scene, skeleton, grain);
+        } catch (const InputError& e) {
+            throw r.error(!grain.empty() && e.file() == grain ? "grain" : "skeleton", e.what());
+        }
+        const WoodTree& tree = *loaded;
         scene.woodShaders.push_back(std::make_unique<WoodShader>(tree.grown->field(), finish));
         m.wood = scene.woodShaders.back().get();
     } else {
@@ -270,8 +292,10 @@ void readPlainShape(JsonReader& r, Scene& scene, SceneObject& o) {
     o.shape = ShapeType::Mesh;
     if (!r.has("file")) throw r.error("file", "missing: the OBJ or glTF file");
     const std::string file = resolve(scene, r.string("file", ""));
-    auto mesh =
-        std::make_shared<TriangleMesh>(isGltfPath(file) ? loadGltfMesh(file) : loadObjMesh(file));
+    auto mesh = loadReferenced(r, "file", [&] {
+        return std::make_shared<TriangleMesh>(isGltfPath(file) ? loadGltfMesh(file)
+                                                               : loadObjMesh(file));
+    });
     double scale = r.positive("scale", 1);
     for (Vec3& p : mesh->positions) p = p * scale;
     o.mesh = mesh;

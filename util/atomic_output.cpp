@@ -62,7 +62,7 @@ void removeOutputsOnSignals() {
 }
 
 void checkOutputPath(const std::string& path) {
-    if (path.empty()) throw InputError("", "output", "empty output path");
+    if (path.empty()) throw InputError("command line", "output", "the output file name is empty");
     fs::path p(path);
     fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
     std::error_code ec;
@@ -102,6 +102,9 @@ void checkOutputName(const std::string& path, const std::vector<std::string>& ex
         known |= e == x;
         list += (list.empty() ? "" : ", ") + x;
     }
+    if (path.empty())
+        throw InputError("command line", "output",
+                         "the output file name is empty: expected a name ending in " + list);
     if (!known)
         throw InputError(path, "",
                          "unsupported output file name: expected a name ending in " + list);

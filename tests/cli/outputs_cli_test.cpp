@@ -11,6 +11,7 @@
 namespace {
 
 const fs::path kScene = kSourceDir / "tests/data/scenes/small-glulam.json";
+const fs::path kSceneRoom = kSourceDir / "scenes/table-top-room.json";
 
 class OutputsCliTest : public CliTest {};
 
@@ -60,6 +61,36 @@ TEST_F(OutputsCliTest, PartialFilesOfKilledRunsAreCleanedUp) {
     EXPECT_FALSE(fs::exists(stale));
     EXPECT_TRUE(fs::exists(live));
     EXPECT_TRUE(fs::exists(out_ / "a.exr"));
+}
+
+TEST_F(OutputsCliTest, AnEmptyOutputNameIsTheCommandLines) {
+    // Once reported as "<input>: unsupported output file name".
+    expectInputError(run({"render", kScene.string(), "-o", ""}),
+                     {"command line: output: the output file name is empty", ".exr"});
+    expectInputError(slice({{"-o", ""}}), {"command line: output: the output file name is empty"});
+}
+
+TEST_F(OutputsCliTest, BrokenFilesAScenePointsAtNameTheSceneToo) {
+    // A broken environment map, mesh, skeleton or grain was named, but not the scene (and the
+    // key in it) that refers to it.
+    const fs::path bad = in_ / "broken.exr";
+    std::ofstream(bad) << "not an image";
+    std::ofstream(in_ / "broken.obj") << "v 0 0 0\nf 1 2 3\n";
+    std::ofstream(in_ / "broken.json") << "{\"radial_speed\": -1}";
+    const std::string uvCube = (kSourceDir / "tests/data/scenes/uv-cube.json").string();
+    const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
+        {{kSceneRoom.string(), "--set", "/lights/1/map=" + bad.string()},
+         {"table-top-room.json: lights[1].map: ", "broken.exr", "cannot read the image"}},
+        {{uvCube, "--set", "/objects/0/file=" + (in_ / "broken.obj").string()},
+         {"uv-cube.json: objects[0].file: ", "broken.obj: line 2"}},
+        {{uvCube, "--set", "/materials/0/grain=" + (in_ / "broken.json").string()},
+         {"uv-cube.json: materials[0].grain: ", "broken.json: radial_speed"}}};
+    for (const auto& [args, pieces] : cases) {
+        std::vector<std::string> all{"render"};
+        all.insert(all.end(), args.begin(), args.end());
+        all.insert(all.end(), {"-q", "-o", (out_ / "x.exr").string()});
+        expectInputError(run(all), pieces);
+    }
 }
 
 TEST_F(OutputsCliTest, CaughtSignalsLeaveNoTemporaryFileBehind) {
