@@ -66,8 +66,7 @@ void probeWood(const Skeleton& skeleton, const GrainParams& params) {
         check(std::isfinite(s.T), "growth time", points[i]);
         check(std::isfinite(s.albedo.r) && std::isfinite(s.albedo.g) && std::isfinite(s.albedo.b),
               "albedo", points[i]);
-        check(std::isfinite(s.knot) && std::isfinite(s.lateWood) && std::isfinite(s.roughness),
-              "knot, late wood or roughness", points[i]);
+        check(std::isfinite(s.knot) && std::isfinite(s.lateWood), "knot or late wood", points[i]);
         check(finite(s.fibre) && finite(s.gradientT) && finite(s.reliefGradient),
               "fibre, gradient or relief", points[i]);
     }

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shader/value_noise.h"
+#include "util/value_noise.h"
 #include "util/axis_frame.h"
 
 namespace nenrin {

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "grain/growth_terms.h"
-#include "shader/value_noise.h"
+#include "util/value_noise.h"
 #include "util/axis_frame.h"
 #include "util/hash.h"
 
