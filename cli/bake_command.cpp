@@ -10,6 +10,7 @@
 #include "arguments.h"
 #include "renderer/jobs/bake_job.h"
 #include "util/input_error.h"
+#include "util/vec3.h"
 #include "uv_bake_command.h"
 
 namespace nenrin {
@@ -70,7 +71,34 @@ struct SliceOptions {
     CommonOptions common;
     std::string plane = "cross", size = "0.4x0.4m", res = "512x512", png;
     double at = 1.0, bottom = 0.0;
+    std::string origin, right, up;  ///< a cut through any plane (all three, or none)
 };
+
+/// --origin, --right and --up as a PlaneCut: three finite points or vectors within the metres
+/// nenrin works in, the edges neither zero nor parallel.
+PlaneCut parsePlaneCut(const SliceOptions& o) {
+    auto vector = [](const std::string& text, const char* option) {
+        if (text.empty())
+            throw InputError("command line", option,
+                             "a cut through any plane needs all of --origin, --right and --up");
+        const std::vector<double> v = parseNumberList(text, option, 3);
+        for (double x : v)
+            if (std::abs(x) > kMaxCoordinate)
+                throw InputError("command line", option,
+                                 fmt::format("{:g} m is beyond the +-{:g} m nenrin works in", x,
+                                             kMaxCoordinate));
+        return Vec3{v[0], v[1], v[2]};
+    };
+    PlaneCut cut{vector(o.origin, "--origin"), vector(o.right, "--right"), vector(o.up, "--up")};
+    if (length(cut.right) < 1e-9)
+        throw InputError("command line", "--right", "the image's bottom edge has no length");
+    if (length(cut.up) < 1e-9)
+        throw InputError("command line", "--up", "the image's left edge has no length");
+    if (length(cross(normalize(cut.right), normalize(cut.up))) < 1e-6)
+        throw InputError("command line", "--up",
+                         "parallel to --right: expected the two edges of a plane");
+    return cut;
+}
 
 struct VolumeOptions {
     CommonOptions common;
@@ -101,8 +129,21 @@ void addSliceCommand(CLI::App* bake) {
         ->default_val(0.0);
     slice->add_option("--png", o->png,
                       "Also write an 8-bit sRGB preview of the colour through OpenColorIO");
+    const char* planeCutNote =
+        " (with --right and --up: a cut through any plane, instead of --plane, --at, --size "
+        "and --bottom)";
+    auto* origin = slice->add_option(
+        "--origin", o->origin,
+        std::string("X,Y,Z: tree-space position (m) of the image's bottom-left sample") +
+            planeCutNote);
+    auto* right = slice->add_option("--right", o->right,
+                                    "X,Y,Z: from --origin to the bottom-right sample (m)");
+    auto* up = slice->add_option("--up", o->up, "X,Y,Z: from --origin to the top-left sample (m)");
+    for (const char* named : {"--plane", "--at", "--size", "--bottom"})
+        for (CLI::Option* general : {origin, right, up}) general->excludes(named);
     slice->callback([o] {
         SliceSpec spec;
+        if (!o->origin.empty() || !o->right.empty() || !o->up.empty()) spec.cut = parsePlaneCut(*o);
         spec.plane = parseSlicePlane(o->plane);
         for (auto [value, option] : {std::pair{o->at, "--at"}, std::pair{o->bottom, "--bottom"}})
             if (!std::isfinite(value) || std::abs(value) > kMaxCoordinate)

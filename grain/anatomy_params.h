@@ -21,6 +21,21 @@ struct AnatomyParams {
     double fibreAmplitude = 0.05;  ///< relative brightness (+-)
     double fibreWidth = 0.0004;    ///< m across the fibre
     double fibreLength = 0.03;     ///< m along it
+    /// Streaks: broad bands of tone along the grain, millimetres wide and centimetres long
+    /// (mineral streaks, growth-rate changes within a ring).
+    double streakAmplitude = 0;  ///< relative brightness (+-)
+    double streakWidth = 0.003;  ///< m across the fibre
+    double streakLength = 0.05;  ///< m along it
+    /// Ring tone: each year's ring a little lighter or darker than the next (the year's
+    /// density), seeded per ring.
+    double ringTone = 0;  ///< relative brightness (+-)
+    /// Speckle: the cells' own granular texture, a few fibres across.
+    double speckleAmplitude = 0;   ///< relative brightness (+-)
+    double speckleSize = 0.00015;  ///< m across the fibre (tangentially)
+    /// m radially: conifer cells line up in radial files, so on end grain the speckle is drawn
+    /// out towards the pith; <= 0: speckleSize.
+    double speckleRadial = 0;
+    double speckleLength = 0.0005;  ///< m along it
     /// Vessels: open tubes along the fibre, dots on end grain, dashes on side grain.
     PoreKind pores = PoreKind::None;
     double poreDiameter = 0.0002;  ///< m

@@ -20,8 +20,16 @@ Rgb readRgb(JsonReader& r, const std::string& key, const Rgb& fallback, double l
 
 nlohmann::json rgbJson(const Rgb& c) { return {c.r, c.g, c.b}; }
 
+nlohmann::json endGrainJson(const ColourParams& c) {
+    nlohmann::json j = {{"darkening", c.endGrainDarkening},
+                        {"redness", c.endGrainRedness},
+                        {"texture", c.endGrainTexture}};
+    if (c.endGrainTint.r >= 0) j["tint"] = rgbJson(c.endGrainTint);
+    return j;
+}
+
 /// The growth terms' parameters: the junction blend (eq. 5), direction (eq. 7), age (eq. 8),
-/// taper (eq. 9) and sway (section 4.5).
+/// taper (eq. 9), sway (section 4.5) and the rings' centimetre-scale wander.
 void readGrowthTerms(JsonReader& root, GrainParams& g) {
     if (auto j = root.object("junction")) {
         g.junction.p = j->inRange("p", g.junction.p, 0.5, 64);
@@ -51,6 +59,16 @@ void readGrowthTerms(JsonReader& root, GrainParams& g) {
         g.sway.radialJitter = s->inRange("radial_jitter", g.sway.radialJitter, 0, 0.9);
         g.sway.seed = static_cast<uint64_t>(s->integer("seed", 1, 0, 1LL << 53));
         s->finish();
+    }
+    if (auto w = root.object("wander")) {
+        g.wander.amplitude = w->inRange("amplitude", g.wander.amplitude, 0, 0.05);
+        g.wander.wavelength = w->atLeast("wavelength", g.wander.wavelength, kMinWanderWavelength,
+                                         "m: rings wander over millimetres or more");
+        g.wander.along = w->atLeast("along", g.wander.along, kMinWanderWavelength,
+                                    "m: rings wander over millimetres or more");
+        g.wander.octaves = static_cast<int>(w->integer("octaves", g.wander.octaves, 1, 4));
+        g.wander.seed = static_cast<uint64_t>(w->integer("seed", 1, 0, 1LL << 53));
+        w->finish();
     }
 }
 
@@ -83,6 +101,22 @@ void readAnatomy(JsonReader& a, AnatomyParams& m) {
         m.fibreWidth = f->inRange("width", m.fibreWidth, 1e-5, 0.01);
         m.fibreLength = f->inRange("length", m.fibreLength, 1e-4, 1);
         f->finish();
+    }
+    if (auto k = a.object("streaks")) {
+        m.streakAmplitude = k->inRange("amplitude", m.streakAmplitude, 0, 0.5);
+        m.streakWidth = k->inRange("width", m.streakWidth, 1e-4, 0.1);
+        m.streakLength = k->inRange("length", m.streakLength, 1e-3, 1);
+        k->finish();
+    }
+    m.ringTone = a.inRange("ring_tone", m.ringTone, 0, 0.5);
+    if (auto k = a.object("speckle")) {
+        m.speckleAmplitude = k->inRange("amplitude", m.speckleAmplitude, 0, 0.5);
+        m.speckleSize = k->inRange("size", m.speckleSize, 1e-5, 0.01);
+        m.speckleLength = k->inRange("length", m.speckleLength, 1e-5, 0.1);
+        m.speckleRadial = k->inRange("radial", m.speckleRadial, 0, 0.01);
+        if (m.speckleRadial > 0 && m.speckleRadial < 1e-5)
+            throw k->error("radial", "expected 0 (as size) or at least 1e-05 (m)");
+        k->finish();
     }
     if (auto v = a.object("pores")) {
         std::string kind = v->choice("kind", "none", {"none", "ring-porous", "diffuse-porous"});
@@ -171,6 +205,8 @@ void readColour(JsonReader& c, ColourParams& cp) {
     if (auto e = c.object("end_grain")) {
         cp.endGrainDarkening = e->inRange("darkening", cp.endGrainDarkening, 0, 0.9);
         cp.endGrainRedness = e->inRange("redness", cp.endGrainRedness, 0, 1);
+        if (e->has("tint")) cp.endGrainTint = readRgb(*e, "tint", cp.endGrainTint, 0);
+        cp.endGrainTexture = e->inRange("texture", cp.endGrainTexture, 0, 4);
         e->finish();
     }
     c.finish();
@@ -198,8 +234,76 @@ GrainParams parseGrain(const nlohmann::json& json, const std::string& file) {
 
 GrainParams loadGrainFile(const std::string& path) { return parseGrain(parseJsonFile(path), path); }
 
+namespace {
+
+/// The "colour" object of a grain file.
+nlohmann::json colourJson(const ColourParams& c) {
+    return {
+        {"early_wood", rgbJson(c.earlyWood)},
+        {"late_wood", rgbJson(c.lateWood)},
+        {"late_wood_exponent", c.lateWoodExponent},
+        {"late_wood_share", c.lateWoodShare},
+        {"late_wood_transition", c.lateWoodTransition},
+        {"late_wood_profile", c.lateWoodProfile},
+        {"heartwood",
+         {{"enabled", c.heartwood},
+          {"start", c.heartwoodStart},
+          {"end", c.heartwoodEnd},
+          {"heartwood_offset", rgbJson(c.heartwoodOffset)},
+          {"sapwood_offset", rgbJson(c.sapwoodOffset)}}},
+        {"micro",
+         {{"cell_size", c.microCellSize}, {"amplitude", c.microAmplitude}, {"seed", c.microSeed}}},
+        {"knots",
+         {{"darkening", c.knotDarkening},
+          {"dead_darkening", c.deadKnotDarkening},
+          {"core", c.knotCore},
+          {"dead_rim", c.deadKnotRim},
+          {"dead_rim_width", c.deadKnotRimWidth},
+          {"dead_checks", c.deadKnotChecks},
+          {"dead_check_width", c.deadKnotCheckWidth},
+          {"tint", rgbJson(c.knotTint)},
+          {"dead_tint", rgbJson(c.deadKnotTint)}}},
+        {"end_grain", endGrainJson(c)}};
+}
+
+/// The "anatomy" object of a grain file.
+nlohmann::json anatomyJson(const AnatomyParams& m) {
+    const char* kinds[] = {"none", "ring-porous", "diffuse-porous"};
+    return {
+        {"enabled", true},
+        {"seed", m.seed},
+        {"fibres",
+         {{"amplitude", m.fibreAmplitude}, {"width", m.fibreWidth}, {"length", m.fibreLength}}},
+        {"streaks",
+         {{"amplitude", m.streakAmplitude}, {"width", m.streakWidth}, {"length", m.streakLength}}},
+        {"ring_tone", m.ringTone},
+        {"speckle",
+         {{"amplitude", m.speckleAmplitude},
+          {"size", m.speckleSize},
+          {"radial", m.speckleRadial},
+          {"length", m.speckleLength}}},
+        {"pores",
+         {{"kind", kinds[static_cast<int>(m.pores)]},
+          {"diameter", m.poreDiameter},
+          {"spacing", m.poreSpacing},
+          {"length", m.poreLength},
+          {"band", m.poreBand},
+          {"darkening", m.poreDarkening},
+          {"depth", m.poreDepth}}},
+        {"rays",
+         {{"spacing", m.raySpacing},
+          {"width", m.rayWidth},
+          {"height", m.rayHeight},
+          {"contrast", m.rayContrast}}},
+        {"resin_canals",
+         {{"spacing", m.resinSpacing},
+          {"diameter", m.resinDiameter},
+          {"darkening", m.resinDarkening}}}};
+}
+
+}  // namespace
+
 nlohmann::json grainToJson(const GrainParams& g) {
-    const ColourParams& c = g.colour;
     nlohmann::json j = {
         {"format", "nenrin-grain"},
         {"radial_speed", g.radialSpeed},
@@ -215,34 +319,13 @@ nlohmann::json grainToJson(const GrainParams& g) {
           {"wavelength", g.sway.wavelength},
           {"radial_jitter", g.sway.radialJitter},
           {"seed", g.sway.seed}}},
-        {"colour",
-         {{"early_wood", rgbJson(c.earlyWood)},
-          {"late_wood", rgbJson(c.lateWood)},
-          {"late_wood_exponent", c.lateWoodExponent},
-          {"late_wood_share", c.lateWoodShare},
-          {"late_wood_transition", c.lateWoodTransition},
-          {"late_wood_profile", c.lateWoodProfile},
-          {"heartwood",
-           {{"enabled", c.heartwood},
-            {"start", c.heartwoodStart},
-            {"end", c.heartwoodEnd},
-            {"heartwood_offset", rgbJson(c.heartwoodOffset)},
-            {"sapwood_offset", rgbJson(c.sapwoodOffset)}}},
-          {"micro",
-           {{"cell_size", c.microCellSize},
-            {"amplitude", c.microAmplitude},
-            {"seed", c.microSeed}}},
-          {"knots",
-           {{"darkening", c.knotDarkening},
-            {"dead_darkening", c.deadKnotDarkening},
-            {"core", c.knotCore},
-            {"dead_rim", c.deadKnotRim},
-            {"dead_rim_width", c.deadKnotRimWidth},
-            {"dead_checks", c.deadKnotChecks},
-            {"dead_check_width", c.deadKnotCheckWidth},
-            {"tint", rgbJson(c.knotTint)},
-            {"dead_tint", rgbJson(c.deadKnotTint)}}},
-          {"end_grain", {{"darkening", c.endGrainDarkening}, {"redness", c.endGrainRedness}}}}},
+        {"wander",
+         {{"amplitude", g.wander.amplitude},
+          {"wavelength", g.wander.wavelength},
+          {"along", g.wander.along},
+          {"octaves", g.wander.octaves},
+          {"seed", g.wander.seed}}},
+        {"colour", colourJson(g.colour)},
     };
     if (g.rings.enabled) {
         const RingModelParams& m = g.rings;
@@ -258,32 +341,7 @@ nlohmann::json grainToJson(const GrainParams& g) {
                       {"climate_seed", m.climateSeed},
                       {"replace_recorded", m.replaceRecorded}};
     }
-    if (g.anatomy.enabled) {
-        const AnatomyParams& m = g.anatomy;
-        const char* kinds[] = {"none", "ring-porous", "diffuse-porous"};
-        j["anatomy"] = {
-            {"enabled", true},
-            {"seed", m.seed},
-            {"fibres",
-             {{"amplitude", m.fibreAmplitude}, {"width", m.fibreWidth}, {"length", m.fibreLength}}},
-            {"pores",
-             {{"kind", kinds[static_cast<int>(m.pores)]},
-              {"diameter", m.poreDiameter},
-              {"spacing", m.poreSpacing},
-              {"length", m.poreLength},
-              {"band", m.poreBand},
-              {"darkening", m.poreDarkening},
-              {"depth", m.poreDepth}}},
-            {"rays",
-             {{"spacing", m.raySpacing},
-              {"width", m.rayWidth},
-              {"height", m.rayHeight},
-              {"contrast", m.rayContrast}}},
-            {"resin_canals",
-             {{"spacing", m.resinSpacing},
-              {"diameter", m.resinDiameter},
-              {"darkening", m.resinDarkening}}}};
-    }
+    if (g.anatomy.enabled) j["anatomy"] = anatomyJson(g.anatomy);
     return j;
 }
 

@@ -11,6 +11,7 @@
 #include "grain/anatomy_params.h"
 #include "grain/rgb.h"
 #include "grain/ring_model.h"
+#include "grain/ring_wander.h"
 #include "util/vec3.h"
 
 namespace nenrin {
@@ -83,6 +84,12 @@ struct ColourParams {
     /// (1 - endGrainRedness); faces in between by the weight |cos(normal, fibre)|^4.
     double endGrainDarkening = 0.3;
     double endGrainRedness = 0.3;
+    /// A measured end-grain colour instead: the factor (r, g, b) an end-grain face's albedo has
+    /// against a side-grain face's, e.g. from photographs of both; r < 0: use the two above.
+    Rgb endGrainTint{-1, -1, -1};
+    /// Open cell ends show the anatomy's texture more strongly: its contrast is multiplied by
+    /// 1 + endGrainTexture at a face cut across the fibre (same weight as the colour).
+    double endGrainTexture = 0;
 };
 
 struct GrainParams {
@@ -95,6 +102,8 @@ struct GrainParams {
     AgeParams age;
     TaperParams taper;
     SwayParams sway;
+    /// Ring-boundary waviness at the centimetre scale ("wander"; off by default).
+    WanderParams wander;
     ColourParams colour;
     /// Yearly ring widths for skeletons that record none ("rings"; off = constant Sb).
     RingModelParams rings;

@@ -26,7 +26,7 @@ constexpr size_t kGroupCullAbove = 64;
 /// The sway pass (section 4.5, main method): every point in the field's domain, displaced;
 /// a run of `stencil` points by its first point's displacement (see evaluateBatch).
 std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, const SwayWaves& sway,
-                                 std::vector<Vec3>& swayed) {
+                                 const WanderParams& wander, std::vector<Vec3>& swayed) {
     // The field's domain: beyond it squared distances overflow and no segment would be
     // nearest (once a crash). Farther points are evaluated as if on its edge, where the answer
     // is long settled (bark or beyond); NaN has no answer. Callers bound their inputs where
@@ -46,12 +46,17 @@ std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, co
     if (stencil <= 1 || n % stencil != 0) {
         for (size_t i = 0; i < n; ++i) {
             const Vec3 p = inDomain(input[i]);
-            swayed[i] = p + swayDisplacement(p, sway);
+            swayed[i] = p + swayDisplacement(p, sway) + ringWander(p, wander);
         }
     } else {
+        // The wander is the rings' own small-scale shape: every point of a stencil gets its
+        // own, so grad T (and the fibres) follow it.
         for (size_t i = 0; i < n; i += stencil) {
             const Vec3 d = swayDisplacement(inDomain(input[i]), sway);
-            for (size_t j = i; j < i + stencil; ++j) swayed[j] = inDomain(input[j]) + d;
+            for (size_t j = i; j < i + stencil; ++j) {
+                const Vec3 p = inDomain(input[j]);
+                swayed[j] = p + d + ringWander(p, wander);
+            }
         }
     }
     return swayed;
@@ -126,7 +131,8 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     const size_t n = input.size();
     if (n == 0) return;
     GrowthBuffers& buffers = scratch.buffers();
-    const std::span<const Vec3> points = swayPoints(input, stencil, sway_, buffers.points);
+    const std::span<const Vec3> points =
+        swayPoints(input, stencil, sway_, params_.wander, buffers.points);
     const PointBox batch = boxOf(points);
     const double maxTrunkTime = evaluateTrunk(points, batch, out, buffers.trunk);
     if (index_->branches().size() == 0) return;

@@ -33,8 +33,14 @@ Rgb woodColour(const GrowthSample& s, const Vec3& treePoint, const ColourParams&
 
 Rgb endGrainAlbedo(const Rgb& albedo, double cosFibre, const ColourParams& c) {
     double c2 = cosFibre * cosFibre;
+    if (c.endGrainTint.r >= 0) return multiply(albedo, mix(Rgb{1, 1, 1}, c.endGrainTint, c2 * c2));
     double d = c.endGrainDarkening * c2 * c2;
     return {albedo.r * (1 - d * (1 - c.endGrainRedness)), albedo.g * (1 - d), albedo.b * (1 - d)};
+}
+
+double endGrainWeight(double cosFibre) {
+    const double c2 = cosFibre * cosFibre;
+    return c2 * c2;
 }
 
 }  // namespace nenrin

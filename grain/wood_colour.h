@@ -19,5 +19,7 @@ Rgb woodColour(const GrowthSample& sample, const Vec3& treePoint, const ColourPa
 /// The end-grain term: `albedo` seen on a face whose normal makes |cos| = `cosFibre` with the
 /// fibre (1 = cut straight across it, 0 = along it).
 Rgb endGrainAlbedo(const Rgb& albedo, double cosFibre, const ColourParams& colour);
+/// How much of a face is end grain: |cos(normal, fibre)|^4, 1 across the fibre, 0 along it.
+double endGrainWeight(double cosFibre);
 
 }  // namespace nenrin

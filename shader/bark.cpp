@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "util/value_noise.h"
 #include "util/axis_frame.h"
+#include "util/value_noise.h"
 
 namespace nenrin {
 

@@ -6,9 +6,9 @@
 #include <numbers>
 
 #include "grain/growth_terms.h"
-#include "util/value_noise.h"
 #include "util/axis_frame.h"
 #include "util/hash.h"
+#include "util/value_noise.h"
 
 namespace nenrin {
 
@@ -140,12 +140,69 @@ bool woodFrameAt(const AnatomyAxis& axis, double T, const Vec3& point, const Vec
     return true;
 }
 
+/// Seeded noise in the wood frame (tangential, radial, axial position in m) with cells of
+/// `cell` metres, seen through the footprint's extents. The lattice never moves (a pattern
+/// that scaled with the footprint would swim and show seams); an octave whose cells are
+/// smaller than the footprint is scaled by one over the square root of the cells a footprint
+/// averages, the standard deviation an area average of it has, and left out once that is
+/// below 1/8. So fine texture keeps its strength in a bake of any resolution and fades to the
+/// mean as the footprint grows; what is left of a sub-pixel octave is noise without a period,
+/// which cannot make moire. Octave k has cells 2^-k as large and half the weight of the last.
+double filteredNoise(uint64_t seed, const Vec3& position, const Vec3& cell, const WoodFrame& f,
+                     int octaves) {
+    double sum = 0, weight = 1;
+    Vec3 c = cell;
+    for (int k = 0; k < octaves; ++k) {
+        const double averaged =
+            std::max(1.0, f.ft / c.x) * std::max(1.0, f.fr / c.y) * std::max(1.0, f.fz / c.z);
+        if (averaged > 64) break;  // finer octaves average out even more
+        sum += weight / std::sqrt(averaged) *
+               valueNoise(seed + 977 * k, position.x / c.x, position.y / c.y, position.z / c.z);
+        weight *= 0.5;
+        c = c * 0.5;
+    }
+    return sum;
+}
+
 /// Fibre streaks: long along the fibre, narrow across it.
 double fibreStreaks(const AnatomyParams& p, const WoodFrame& f, double arc) {
-    const double keep = std::min(detail(f.ft, p.fibreWidth), detail(f.fr, p.fibreWidth));
-    if (keep <= 0) return 0;
-    return keep * p.fibreAmplitude *
-           valueNoise(p.seed, arc / p.fibreWidth, f.rho / p.fibreWidth, f.z / p.fibreLength);
+    if (p.fibreAmplitude <= 0) return 0;
+    return p.fibreAmplitude * filteredNoise(p.seed, {arc, f.rho, f.z},
+                                            {p.fibreWidth, p.fibreWidth, p.fibreLength}, f, 1);
+}
+
+/// Broad streaks of tone along the grain.
+double toneStreaks(const AnatomyParams& p, const WoodFrame& f, double arc) {
+    if (p.streakAmplitude <= 0) return 0;
+    return p.streakAmplitude * filteredNoise(p.seed + 57, {arc, f.rho, f.z},
+                                             {p.streakWidth, p.streakWidth, p.streakLength}, f, 2);
+}
+
+/// Each ring's own tone, seeded by its year; averaged away once a footprint spans rings.
+double ringTone(const AnatomyParams& p, const WoodFrame& f) {
+    if (p.ringTone <= 0) return 0;
+    const double year = std::floor(f.T);
+    if (!std::isfinite(year)) return 0;
+    const double rings = f.gradT * std::max({f.ft, f.fr, f.fz});  // years under the footprint
+    // The tone changes over the first fifth of the ring, from the last year's: rings differ
+    // in tone, but the change has no edge of its own beside the late wood's.
+    auto tone = [&](double y) {
+        return 2 * cellRandom(p.seed, 71, static_cast<long long>(std::fmod(y, 1e15)), 0) - 1;
+    };
+    const double blend = smoothstep(0, 0.2, f.T - year);
+    return p.ringTone / std::sqrt(1 + rings * rings) *
+           (tone(year - 1) + (tone(year) - tone(year - 1)) * blend);
+}
+
+/// The cells themselves: a granular speckle at the scale of a few fibres, slightly drawn out
+/// along them (what a photograph shows between the rings at 0.2 mm a pixel).
+double speckle(const AnatomyParams& p, const WoodFrame& f, double arc) {
+    if (p.speckleAmplitude <= 0) return 0;
+    return p.speckleAmplitude *
+           filteredNoise(p.seed + 31, {arc, f.rho, f.z},
+                         {p.speckleSize, p.speckleRadial > 0 ? p.speckleRadial : p.speckleSize,
+                          p.speckleLength},
+                         f, 2);
 }
 
 /// Vessels: their filtered coverage; `relief` gets the pit's slope.
@@ -263,7 +320,8 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
     const double arc = f.rho * f.theta;   // tangential position (m)
     const double radial = f.T / f.gradT;  // radial position (m), rings at their true spacing
     const double phase = f.T - std::floor(f.T);
-    const double fibre = fibreStreaks(p, f, arc);
+    const double fibre =
+        fibreStreaks(p, f, arc) + speckle(p, f, arc) + toneStreaks(p, f, arc) + ringTone(p, f);
     const double pore = vessels(p, f, arc, radial, phase, out.reliefGradient);
     const double ray = rays(p, f);
     const double resin = resinCanals(p, f, arc, radial, phase);

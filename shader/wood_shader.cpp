@@ -49,6 +49,26 @@ void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample
     }
 }
 
+Vec3 WoodShader::applyAnatomy(const GrowthSample& s, const Vec3& point, const SurfaceFootprint& f,
+                              double contrast, WoodSurfaceSample& o) const {
+    // Fibres, pores and rays about the trunk's axis, and inside a knot about its branch's:
+    // there the rays radiate from the knot's pith and the fibres follow it.
+    const AnatomyParams& anatomy = field_->params().anatomy;
+    const bool knotted = s.knotChain >= 0 && s.knot > 0;
+    const double inKnot = knotted ? smoothstep(0.3, 0.6, s.knot) : 0.0;
+    AnatomySample a = woodAnatomy(anatomy, s, point, o.gradientT, f.dpdx, f.dpdy, f.diameter,
+                                  (1 - inKnot) * contrast);
+    o.albedo = multiply(o.albedo, a.filter);
+    Vec3 relief = a.reliefGradient;
+    if (inKnot > 0) {
+        AnatomySample k = woodAnatomy(anatomy, {s.knotOffset, s.knotAxisDirection}, s.T, point,
+                                      o.gradientT, f.dpdx, f.dpdy, f.diameter, inKnot);
+        o.albedo = multiply(o.albedo, k.filter);
+        relief = relief + k.reliefGradient;
+    }
+    return relief;
+}
+
 void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
                                  std::span<const SurfaceFootprint> footprints,
                                  std::span<WoodSurfaceSample> out, WoodScratch& scratch) const {
@@ -116,24 +136,15 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         double g2 = lengthSquared(o.gradientT);
         Vec3 along = g2 > 0 ? axis - o.gradientT * (dot(axis, o.gradientT) / g2) : axis;
         o.fibre = lengthSquared(along) > 1e-12 ? normalize(along) : axis;
-        if (field_->params().anatomy.enabled && !outside) {
-            // Fibres, pores and rays about the trunk's axis, and inside a knot about its
-            // branch's: there the rays radiate from the knot's pith and the fibres follow it.
-            SurfaceFootprint f = footprints.empty() ? SurfaceFootprint{} : footprints[i];
-            const AnatomyParams& anatomy = field_->params().anatomy;
-            const double inKnot = knotted ? smoothstep(0.3, 0.6, s.knot) : 0.0;
-            AnatomySample a = woodAnatomy(anatomy, s, treePoints[i], o.gradientT, f.dpdx, f.dpdy,
-                                          f.diameter, 1 - inKnot);
-            o.albedo = multiply(o.albedo, a.filter);
-            anatomyRelief = a.reliefGradient;
-            if (inKnot > 0) {
-                AnatomySample k =
-                    woodAnatomy(anatomy, {s.knotOffset, s.knotAxisDirection}, s.T, treePoints[i],
-                                o.gradientT, f.dpdx, f.dpdy, f.diameter, inKnot);
-                o.albedo = multiply(o.albedo, k.filter);
-                anatomyRelief = anatomyRelief + k.reliefGradient;
-            }
-        }
+        // How much of the face is end grain (the normal along the fibre).
+        const double endGrain =
+            !footprints.empty() && lengthSquared(footprints[i].normal) > 0
+                ? endGrainWeight(std::abs(dot(normalize(footprints[i].normal), o.fibre)))
+                : 0.0;
+        if (field_->params().anatomy.enabled && !outside)
+            anatomyRelief = applyAnatomy(s, treePoints[i],
+                                         footprints.empty() ? SurfaceFootprint{} : footprints[i],
+                                         1 + colour.endGrainTexture * endGrain, o);
         if (!footprints.empty() && !outside && lengthSquared(footprints[i].normal) > 0)
             o.albedo = endGrainAlbedo(
                 o.albedo, std::abs(dot(normalize(footprints[i].normal), o.fibre)), colour);

@@ -83,6 +83,11 @@ public:
                          std::span<WoodSurfaceSample> out, WoodScratch& scratch) const;
 
 private:
+    /// Multiplies the albedo by the anatomy's texture (stronger by `contrast` on end grain);
+    /// returns its relief gradient.
+    Vec3 applyAnatomy(const GrowthSample& s, const Vec3& point, const SurfaceFootprint& f,
+                      double contrast, WoodSurfaceSample& o) const;
+
     const GrowthField* field_;
     Finish finish_;
     RingProfile rings_;

@@ -19,14 +19,15 @@ inline constexpr double kMaxCoordinate = 1e4;
 /// The smallest values that make physical sense for the growth field's speeds, widths and
 /// wavelengths. Smaller ones are typos or hostile input: they overflow growth times to
 /// infinity (1e-308 once crashed the shader), so files are refused below them, naming these.
-inline constexpr double kMinElongationSpeed = 1e-4;  ///< m/year: 0.1 mm a year
-inline constexpr double kMinRadialSpeed = 1e-5;      ///< m/year: 0.01 mm a year
-inline constexpr double kMinRingWidth = 1e-6;        ///< m: 1 um, finer than any measurement
-inline constexpr double kMinBranchGamma = 1e-3;      ///< of the trunk's radial speed
-inline constexpr double kMinBranchLength = 1e-3;     ///< m
-inline constexpr double kMinDeathTime = 0.01;        ///< years
-inline constexpr double kMinSwayWavelength = 0.01;   ///< m: sway bends rings over centimetres+
-inline constexpr double kMinCellSize = 1e-6;         ///< m: of the micro-structure's cells
+inline constexpr double kMinElongationSpeed = 1e-4;   ///< m/year: 0.1 mm a year
+inline constexpr double kMinRadialSpeed = 1e-5;       ///< m/year: 0.01 mm a year
+inline constexpr double kMinRingWidth = 1e-6;         ///< m: 1 um, finer than any measurement
+inline constexpr double kMinBranchGamma = 1e-3;       ///< of the trunk's radial speed
+inline constexpr double kMinBranchLength = 1e-3;      ///< m
+inline constexpr double kMinDeathTime = 0.01;         ///< years
+inline constexpr double kMinSwayWavelength = 0.01;    ///< m: sway bends rings over centimetres+
+inline constexpr double kMinWanderWavelength = 1e-3;  ///< m: rings wander over millimetres+
+inline constexpr double kMinCellSize = 1e-6;          ///< m: of the micro-structure's cells
 
 /// True if a width x height image is within kMaxImageSide and kMaxImagePixels.
 constexpr bool imageSizeAllowed(long long width, long long height) {

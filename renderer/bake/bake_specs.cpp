@@ -31,6 +31,17 @@ BakedGrid sliceGrid(const Skeleton& skeleton, const SliceSpec& spec) {
     g.width = spec.resX;
     g.height = spec.resY;
     g.depth = 1;
+    if (spec.cut) {
+        const PlaneCut& cut = *spec.cut;
+        const double fx = g.width > 1 ? 1.0 / (g.width - 1) : 0;
+        const double fy = g.height > 1 ? 1.0 / (g.height - 1) : 0;
+        g.stepX = cut.right * fx;
+        g.stepY = cut.up * -fy;
+        g.origin = cut.origin + cut.up * (g.height > 1 ? 1.0 : 0.5) +
+                   cut.right * (g.width > 1 ? 0.0 : 0.5);
+        g.normal = cross(cut.right, cut.up);
+        return g;
+    }
     const double du = spec.width / spec.resX, dv = spec.height / spec.resY;
     if (spec.plane == SlicePlane::Cross) {
         Vec3 c = pithAtHeight(skeleton, spec.at);
@@ -38,6 +49,7 @@ BakedGrid sliceGrid(const Skeleton& skeleton, const SliceSpec& spec) {
         g.stepX = {du, 0, 0};
         g.stepY = {0, -dv, 0};
         g.origin = {c.x - 0.5 * spec.width + 0.5 * du, c.y + 0.5 * spec.height - 0.5 * dv, spec.at};
+        g.normal = {0, 0, 1};
     } else {
         Vec3 c = pithAtHeight(skeleton, spec.bottom + 0.5 * spec.height);
         double top = spec.bottom + spec.height - 0.5 * dv;
@@ -45,9 +57,11 @@ BakedGrid sliceGrid(const Skeleton& skeleton, const SliceSpec& spec) {
         if (spec.plane == SlicePlane::Radial) {
             g.stepX = {du, 0, 0};
             g.origin = {c.x - 0.5 * spec.width + 0.5 * du, c.y + spec.at, top};
+            g.normal = {0, -1, 0};
         } else {
             g.stepX = {0, du, 0};
             g.origin = {c.x + spec.at, c.y - 0.5 * spec.width + 0.5 * du, top};
+            g.normal = {1, 0, 0};
         }
     }
     g.stepZ = {};

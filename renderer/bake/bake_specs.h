@@ -2,6 +2,7 @@
 /// Where a bake samples the tree: planar cuts through the log (slices) and boxes (volumes).
 /// All positions are tree space: metres, +Z up the trunk.
 
+#include <optional>
 #include <string>
 
 #include "renderer/bake/baked_grid.h"
@@ -18,7 +19,18 @@ enum class SlicePlane {
 SlicePlane parseSlicePlane(const std::string& name);  ///< throws InputError
 const char* slicePlaneName(SlicePlane plane);
 
+/// A cut through any plane (tree space, metres), the convention of the photographed cubes of
+/// ../shared/data/mokume: `origin` is the image's bottom-left sample, `right` and `up` run from
+/// it to the bottom-right and top-left samples, so the outermost samples lie on the edges.
+/// (An image one sample wide or high has it in the middle.)
+struct PlaneCut {
+    Vec3 origin, right, up;
+};
+
 struct SliceSpec {
+    /// When set, the slice is this plane and `plane`, `at`, `width`, `height` and `bottom` are
+    /// not used.
+    std::optional<PlaneCut> cut;
     SlicePlane plane = SlicePlane::Cross;
     double at = 1;  ///< m: height (cross) or offset from the pith (radial, tangential)
     double width = 0.4, height = 0.4;  ///< m: image extent (boards: width across, height along z)
@@ -26,8 +38,9 @@ struct SliceSpec {
     int resX = 512, resY = 512;
 };
 
-/// Sets up the sample grid of a slice (pixel centres; row 0 at the top of the image). Cross
-/// sections are centred on the pith at that height, boards on the pith at mid-height.
+/// Sets up the sample grid of a slice (row 0 at the top of the image) and its normal: pixel
+/// centres of the named planes (cross sections centred on the pith at that height, boards on
+/// the pith at mid-height), or the samples of a PlaneCut.
 BakedGrid sliceGrid(const Skeleton& skeleton, const SliceSpec& spec);
 
 struct VolumeSpec {

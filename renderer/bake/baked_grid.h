@@ -19,6 +19,9 @@ struct BakedGrid {
     std::vector<float> data;  ///< channel-interleaved, x fastest, then y (row 0 first), then z
     /// Tree-space position of sample (i, j, k) = origin + i*stepX + j*stepY + k*stepZ.
     Vec3 origin, stepX, stepY, stepZ;
+    /// A slice's plane normal (any length; the side the image is seen from), for the
+    /// end-grain term; zero for volumes, whose samples lie inside the wood.
+    Vec3 normal;
     std::map<std::string, std::string> metadata;
     /// The layers held: all of them, unless a split job (--tile) bakes a band. A layer is a
     /// row of a 2D grid or a z slice of a volume; data holds layers [layerBegin, layerEnd).

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <stdexcept>
 
 #include "renderer/parallel_tiles.h"
@@ -50,11 +51,22 @@ void bakeGrid(const WoodShader& shader, BakedGrid& grid, const BakeOptions& opti
     const size_t tiles = size_t(nx) * ny * nz;
     ProgressReporter progress(static_cast<long long>(tiles), options.title, options.quiet);
 
+    // Every sample is the wood's full surface response filtered over its cell: a slice's
+    // pixel (with the plane's normal, for the end-grain term), a volume's cell (isotropic, no
+    // surface), so a coarse bake fades to the mean instead of aliasing.
+    const SurfaceFootprint footprint =
+        volume ? SurfaceFootprint{{},
+                                  {},
+                                  std::sqrt(std::max({lengthSquared(grid.stepX),
+                                                      lengthSquared(grid.stepY),
+                                                      lengthSquared(grid.stepZ)})),
+                                  {}}
+               : SurfaceFootprint{grid.stepX, grid.stepY, 0, grid.normal};
     parallelTiles(tiles, options.threads, [&](size_t tile) {
-        thread_local GrowthScratch scratch;
-        thread_local std::vector<GrowthSample> samples;
+        thread_local WoodScratch scratch;
         thread_local std::vector<Vec3> points;
-        thread_local std::vector<WoodSample> wood;
+        thread_local std::vector<SurfaceFootprint> footprints;
+        thread_local std::vector<WoodSurfaceSample> wood;
         thread_local std::vector<std::array<int, 3>> indices;
         const int ti = static_cast<int>(tile % nx);
         const int tj = static_cast<int>((tile / nx) % ny) + (volume ? 0 : firstTile);
@@ -76,14 +88,17 @@ void bakeGrid(const WoodShader& shader, BakedGrid& grid, const BakeOptions& opti
                                 indices.push_back({i, j, k});
                             }
         wood.resize(points.size());
-        shader.evaluate(points, wood, scratch, samples);
+        footprints.assign(points.size(), footprint);
+        shader.evaluateSurface(points, footprints, wood, scratch);
         for (size_t n = 0; n < points.size(); ++n) {
             const auto [i, j, k] = indices[n];
             float* px = grid.at(i, j, k);
-            const WoodSample& w = wood[n];
-            px[0] = static_cast<float>(w.albedo.r);
-            px[1] = static_cast<float>(w.albedo.g);
-            px[2] = static_cast<float>(w.albedo.b);
+            const WoodSurfaceSample& w = wood[n];
+            // Outside the felled log the channels stay black: A says so.
+            const Rgb albedo = w.coverage > 0 ? w.albedo : Rgb{};
+            px[0] = static_cast<float>(albedo.r);
+            px[1] = static_cast<float>(albedo.g);
+            px[2] = static_cast<float>(albedo.b);
             px[3] = static_cast<float>(w.coverage);
             px[4] = static_cast<float>(w.T);
             px[5] = static_cast<float>(w.knot);

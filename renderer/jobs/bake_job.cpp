@@ -129,9 +129,13 @@ BakeReport runSliceBake(const BakeJob& job, const SliceSpec& spec) {
     if (!job.png.empty()) checkOutputName(job.png, {".png"});
     auto setUp = [&](const GrownTree& tree) {
         BakedGrid grid = sliceGrid(tree.skeleton(), spec);
+        auto vec = [](const Vec3& v) { return fmt::format("{},{},{}", v.x, v.y, v.z); };
         grid.metadata["slice"] =
-            fmt::format("plane={} at={} size={}x{}m bottom={}", slicePlaneName(spec.plane), spec.at,
-                        spec.width, spec.height, spec.bottom);
+            spec.cut
+                ? fmt::format("origin={} right={} up={}", vec(spec.cut->origin),
+                              vec(spec.cut->right), vec(spec.cut->up))
+                : fmt::format("plane={} at={} size={}x{}m bottom={}", slicePlaneName(spec.plane),
+                              spec.at, spec.width, spec.height, spec.bottom);
         return grid;
     };
     auto write = [&](const BakedGrid& grid) {
