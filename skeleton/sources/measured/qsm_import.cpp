@@ -14,6 +14,7 @@
 #include "skeleton/segment_geometry.h"
 #include "util/input_error.h"
 #include "util/input_file.h"
+#include "util/limits.h"
 
 namespace nenrin {
 
@@ -25,6 +26,8 @@ constexpr double kSamePoint = 1e-6;
 // thickest trunks (a few metres), and the oldest trees (~5000 years; one entry per year).
 constexpr double kMaxQsmCoordinate = 1e7;
 constexpr double kMaxQsmRadius = 50;
+// Scanners resolve no twig thinner than a millimetre; a 0.1 mm radius is surely a unit error.
+constexpr double kMinQsmRadius = 1e-4;
 constexpr double kMaxQsmAge = 10000;
 // A TreeQSM text export is ~150 bytes per cylinder: a million cylinders.
 constexpr uintmax_t kMaxQsmFileBytes = uintmax_t(256) << 20;
@@ -262,10 +265,13 @@ private:
         cyl.line = line;
         cyl.id = column_[Id] >= 0 ? integer(cells, Id, line)
                                   : static_cast<long long>(cylinders_.size() + 1);
-        if (cyl.id < 0) throw lineError(line, "cylinder number -1: expected a number >= 0");
+        if (cyl.id < 0)
+            throw lineError(line,
+                            fmt::format("cylinder number {}: expected a number >= 0", cyl.id));
         cyl.radius = number(cells, Radius, line);
-        if (!(cyl.radius > 0))
-            throw lineError(line, fmt::format("radius {} m: expected > 0", cyl.radius));
+        if (!(cyl.radius >= kMinQsmRadius))
+            throw lineError(line, fmt::format("radius {:g} m: expected at least {:g} m (0.1 mm)",
+                                              cyl.radius, kMinQsmRadius));
         if (cyl.radius > kMaxQsmRadius)
             throw lineError(line, fmt::format("radius {:g} m: expected at most {:g} m (is the file "
                                               "in millimetres?)",
@@ -470,6 +476,13 @@ private:
         tree.branches = firsts.size();
         tree.age = std::max(1.0, std::ceil(lastBirth - 1e-9));
         tree.ringWidth = cylinders_[root_].radius / tree.age;
+        if (tree.ringWidth < kMinRingWidth)
+            throw lineError(
+                cylinders_[root_].line,
+                fmt::format("the trunk's first cylinder, {:g} m thick after {:g} "
+                            "years, gives rings {:.3g} m wide: expected at least {:g} "
+                            "m; check the elongation speed",
+                            cylinders_[root_].radius, tree.age, tree.ringWidth, kMinRingWidth));
         tree.skeleton.setRingWidths(
             std::vector<double>(static_cast<size_t>(tree.age), tree.ringWidth));
         return tree;

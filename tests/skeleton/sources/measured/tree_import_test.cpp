@@ -257,7 +257,14 @@ TEST(QsmImport, BadFilesSayWhereAndWhat) {
     EXPECT_NE(qsmError("0.2\t1\t0\t0\t0\t0\t0\t1\t0\t0\t1\n0.2\t1\t0\t0\t1\t0\t0\t1\t0\t0\t1\n")
                   .find("second cylinder without parent"),
               std::string::npos);
-    EXPECT_NE(qsmError("-0.2\t1\t0\t0\t0\t0\t0\t1\t0\t0\t1\n").find("expected > 0"),
+    EXPECT_NE(qsmError("-0.2\t1\t0\t0\t0\t0\t0\t1\t0\t0\t1\n").find("expected at least"),
+              std::string::npos);
+    // Found by fuzzing: a 1e-303 m stem gave rings so thin that the growth time overflowed.
+    EXPECT_NE(qsmError("1e-303\t1\t0\t0\t0\t0\t0\t1\t0\t0\t1\n")
+                  .find("radius 1e-303 m: "
+                        "expected at least 0.0001 m"),
+              std::string::npos);
+    EXPECT_NE(qsmError("2e-4\t4000\t0\t0\t0\t0\t0\t1\t0\t0\t1\n").find("rings 2.5e-08 m wide"),
               std::string::npos);
     EXPECT_NE(qsmError("radius,length\n1,2\n").find("start x/y/z"), std::string::npos);
     EXPECT_NE(qsmError("").find("empty"), std::string::npos);
