@@ -23,7 +23,8 @@ nlohmann::json rgbJson(const Rgb& c) { return {c.r, c.g, c.b}; }
 nlohmann::json endGrainJson(const ColourParams& c) {
     nlohmann::json j = {{"darkening", c.endGrainDarkening},
                         {"redness", c.endGrainRedness},
-                        {"texture", c.endGrainTexture}};
+                        {"texture", c.endGrainTexture},
+                        {"contrast", c.endGrainContrast}};
     if (c.endGrainTint.r >= 0) j["tint"] = rgbJson(c.endGrainTint);
     return j;
 }
@@ -206,7 +207,8 @@ void readColour(JsonReader& c, ColourParams& cp) {
         cp.endGrainDarkening = e->inRange("darkening", cp.endGrainDarkening, 0, 0.9);
         cp.endGrainRedness = e->inRange("redness", cp.endGrainRedness, 0, 1);
         if (e->has("tint")) cp.endGrainTint = readRgb(*e, "tint", cp.endGrainTint, 0);
-        cp.endGrainTexture = e->inRange("texture", cp.endGrainTexture, 0, 4);
+        cp.endGrainTexture = e->inRange("texture", cp.endGrainTexture, -0.9, 4);
+        cp.endGrainContrast = e->inRange("contrast", cp.endGrainContrast, -0.9, 4);
         e->finish();
     }
     c.finish();

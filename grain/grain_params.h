@@ -87,9 +87,13 @@ struct ColourParams {
     /// A measured end-grain colour instead: the factor (r, g, b) an end-grain face's albedo has
     /// against a side-grain face's, e.g. from photographs of both; r < 0: use the two above.
     Rgb endGrainTint{-1, -1, -1};
-    /// Open cell ends show the anatomy's texture more strongly: its contrast is multiplied by
-    /// 1 + endGrainTexture at a face cut across the fibre (same weight as the colour).
+    /// Open cell ends show the cells' own texture (the anatomy's fibres and speckle) more
+    /// strongly: its contrast is multiplied by 1 + endGrainTexture at a face cut across the
+    /// fibre (same weight as the colour).
     double endGrainTexture = 0;
+    /// The rest of the anatomy (streaks, ring tones, vessels) there: its contrast is
+    /// multiplied by 1 + endGrainContrast (< 0 where a dark end grain swallows it).
+    double endGrainContrast = 0;
 };
 
 struct GrainParams {

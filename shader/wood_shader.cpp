@@ -50,14 +50,22 @@ void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample
 }
 
 Vec3 WoodShader::applyAnatomy(const GrowthSample& s, const Vec3& point, const SurfaceFootprint& f,
-                              double contrast, WoodSurfaceSample& o) const {
+                              double cellContrast, double otherContrast,
+                              WoodSurfaceSample& o) const {
     // Fibres, pores and rays about the trunk's axis, and inside a knot about its branch's:
     // there the rays radiate from the knot's pith and the fibres follow it.
-    const AnatomyParams& anatomy = field_->params().anatomy;
+    // The cells' own texture (fibres, speckle) shows `cellContrast` times as strongly; the
+    // streaks, ring tones and vessels are the same on any face.
+    AnatomyParams anatomy = field_->params().anatomy;
+    anatomy.fibreAmplitude *= cellContrast;
+    anatomy.speckleAmplitude *= cellContrast;
+    anatomy.streakAmplitude *= otherContrast;
+    anatomy.ringTone *= otherContrast;
+    anatomy.poreDarkening *= otherContrast;
     const bool knotted = s.knotChain >= 0 && s.knot > 0;
     const double inKnot = knotted ? smoothstep(0.3, 0.6, s.knot) : 0.0;
-    AnatomySample a = woodAnatomy(anatomy, s, point, o.gradientT, f.dpdx, f.dpdy, f.diameter,
-                                  (1 - inKnot) * contrast);
+    AnatomySample a =
+        woodAnatomy(anatomy, s, point, o.gradientT, f.dpdx, f.dpdy, f.diameter, 1 - inKnot);
     o.albedo = multiply(o.albedo, a.filter);
     Vec3 relief = a.reliefGradient;
     if (inKnot > 0) {
@@ -142,9 +150,9 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
                 ? endGrainWeight(std::abs(dot(normalize(footprints[i].normal), o.fibre)))
                 : 0.0;
         if (field_->params().anatomy.enabled && !outside)
-            anatomyRelief = applyAnatomy(s, treePoints[i],
-                                         footprints.empty() ? SurfaceFootprint{} : footprints[i],
-                                         1 + colour.endGrainTexture * endGrain, o);
+            anatomyRelief = applyAnatomy(
+                s, treePoints[i], footprints.empty() ? SurfaceFootprint{} : footprints[i],
+                1 + colour.endGrainTexture * endGrain, 1 + colour.endGrainContrast * endGrain, o);
         if (!footprints.empty() && !outside && lengthSquared(footprints[i].normal) > 0)
             o.albedo = endGrainAlbedo(
                 o.albedo, std::abs(dot(normalize(footprints[i].normal), o.fibre)), colour);

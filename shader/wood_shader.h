@@ -83,10 +83,11 @@ public:
                          std::span<WoodSurfaceSample> out, WoodScratch& scratch) const;
 
 private:
-    /// Multiplies the albedo by the anatomy's texture (stronger by `contrast` on end grain);
-    /// returns its relief gradient.
+    /// Multiplies the albedo by the anatomy's texture (on end grain the cells' own
+    /// `cellContrast` times as strong, its streaks, ring tones and vessels `otherContrast`
+    /// times); returns its relief gradient.
     Vec3 applyAnatomy(const GrowthSample& s, const Vec3& point, const SurfaceFootprint& f,
-                      double contrast, WoodSurfaceSample& o) const;
+                      double cellContrast, double otherContrast, WoodSurfaceSample& o) const;
 
     const GrowthField* field_;
     Finish finish_;
