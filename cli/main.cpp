@@ -13,6 +13,7 @@
 #include "pov_command.h"
 #include "render_command.h"
 #include "split_commands.h"
+#include "stats_command.h"
 #include "tree_command.h"
 #include "tree_model_commands.h"
 #include "util/atomic_output.h"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
     nenrin::addPovCommands(app);
     nenrin::addTreeCommands(app);
     nenrin::addStandCommands(app);
+    nenrin::addStatsCommand(app);
     try {
         // Every output of the command reaches its final name only if the command succeeds.
         nenrin::OutputTransaction outputs;

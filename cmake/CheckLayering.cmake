@@ -21,6 +21,7 @@ set(sources_of_library
     "renderer/preview:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/farm:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/jobs:renderer/farm,renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
+    "renderer/stats:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "cli:*")
 
 set(libraries "")

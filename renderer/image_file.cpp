@@ -83,18 +83,20 @@ ImageFile readExr(const std::string& path) {
     return image;
 }
 
-ImageFile readThroughOiio(const std::string& path) {
-    NenrinOiioReadFn read = nullptr;
-    NenrinOiioFreeFn release = nullptr;
+/// A function of the OpenImageIO module; a module that cannot be loaded is an error of `path`.
+void* oiioSymbol(const char* symbol, const std::string& feature, const std::string& path) {
     try {
-        const std::string feature = "reading images other than EXR and PNG";
-        read = reinterpret_cast<NenrinOiioReadFn>(moduleSymbol(
-            "libnenrin_oiio_reader.so", NENRIN_OIIO_MODULE, "nenrin_oiio_read", feature));
-        release = reinterpret_cast<NenrinOiioFreeFn>(moduleSymbol(
-            "libnenrin_oiio_reader.so", NENRIN_OIIO_MODULE, "nenrin_oiio_free", feature));
+        return moduleSymbol("libnenrin_oiio_reader.so", NENRIN_OIIO_MODULE, symbol, feature);
     } catch (const InputError& e) {
         throw InputError(path, "", e.what());
     }
+}
+
+ImageFile readThroughOiio(const std::string& path) {
+    const std::string feature = "reading images other than EXR and PNG";
+    auto read = reinterpret_cast<NenrinOiioReadFn>(oiioSymbol("nenrin_oiio_read", feature, path));
+    auto release =
+        reinterpret_cast<NenrinOiioFreeFn>(oiioSymbol("nenrin_oiio_free", feature, path));
     NenrinOiioImage raw{};
     char error[1024] = {};
     if (read(path.c_str(), &raw, error, sizeof error) != 0)
@@ -132,6 +134,21 @@ ImageFile readImageFile(const std::string& path) {
         return readExr(path);
     if (std::string(magic, 8) == "\x89PNG\r\n\x1a\n") return readPng(path);
     return readThroughOiio(path);
+}
+
+ImageFile resizeImageFile(const ImageFile& image, int width, int height, const std::string& filter,
+                          const std::string& path) {
+    auto resize = reinterpret_cast<NenrinOiioResizeFn>(
+        oiioSymbol("nenrin_oiio_resize", "resizing images", path));
+    ImageFile out = image;
+    out.width = width;
+    out.height = height;
+    out.pixels.assign(size_t(width) * height * image.channels, 0.f);
+    char error[1024] = {};
+    if (resize(image.pixels.data(), image.width, image.height, image.channels, filter.c_str(),
+               width, height, out.pixels.data(), error, sizeof error) != 0)
+        throw InputError(path, "", std::string("cannot resize the image: ") + error);
+    return out;
 }
 
 }  // namespace nenrin

@@ -21,6 +21,12 @@ struct ImageFile {
 /// naming `path` if it cannot be read, is deep, or holds more than 2^30 values.
 ImageFile readImageFile(const std::string& path);
 
+/// `image` resampled to width x height by OpenImageIO's ImageBufAlgo::resize with the named
+/// filter ("lanczos3", "triangle", ...: OpenImageIO widens it by the factor when shrinking, an
+/// antialiasing filter), through the OpenImageIO module. Throws InputError naming `path`.
+ImageFile resizeImageFile(const ImageFile& image, int width, int height, const std::string& filter,
+                          const std::string& path);
+
 /// The C interface of the OpenImageIO module (renderer/oiio_reader).
 extern "C" {
 typedef struct NenrinOiioImage {
@@ -32,6 +38,11 @@ typedef struct NenrinOiioImage {
 typedef int (*NenrinOiioReadFn)(const char* path, NenrinOiioImage* image, char* error,
                                 unsigned long errorSize);
 typedef void (*NenrinOiioFreeFn)(NenrinOiioImage* image);
+/// Resizes channel-interleaved `pixels` into `out` (outWidth x outHeight x channels floats,
+/// allocated by the caller); 0 on success, else a message in `error`.
+typedef int (*NenrinOiioResizeFn)(const float* pixels, int width, int height, int channels,
+                                  const char* filter, int outWidth, int outHeight, float* out,
+                                  char* error, unsigned long errorSize);
 }
 
 }  // namespace nenrin

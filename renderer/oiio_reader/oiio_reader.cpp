@@ -1,7 +1,10 @@
 // The OpenImageIO module: reads any image format OpenImageIO knows, for the formats nenrin does
-// not read itself (renderer/image_file.h). A shared module loaded on first use, so that
-// OpenImageIO's ~260 libraries are loaded only by processes that meet such a file.
+// not read itself, and resizes images with its filters (renderer/image_file.h). A shared module
+// loaded on first use, so that OpenImageIO's ~260 libraries are loaded only by processes that meet
+// such a file.
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cstdlib>
@@ -63,4 +66,24 @@ extern "C" __attribute__((visibility("default"))) void nenrin_oiio_free(
     nenrin::NenrinOiioImage* image) {
     std::free(image->pixels);
     image->pixels = nullptr;
+}
+
+extern "C" __attribute__((visibility("default"))) int nenrin_oiio_resize(
+    const float* pixels, int width, int height, int channels, const char* filter, int outWidth,
+    int outHeight, float* out, char* error, unsigned long errorSize) {
+    try {
+        // Both buffers wrapped, not copied: the caller owns them.
+        const OIIO::ImageBuf src(OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::FLOAT),
+                                 const_cast<float*>(pixels));
+        OIIO::ImageBuf dst(OIIO::ImageSpec(outWidth, outHeight, channels, OIIO::TypeDesc::FLOAT),
+                           out);
+        if (!OIIO::ImageBufAlgo::resize(dst, src, filter)) {
+            copyError(dst.geterror(), error, errorSize);
+            return 1;
+        }
+        return 0;
+    } catch (const std::exception& e) {
+        copyError(e.what(), error, errorSize);
+        return 1;
+    }
 }
