@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "util/hash.h"
+#include "util/vec3.h"
 
 namespace nenrin {
 
@@ -26,6 +27,34 @@ inline double valueNoise(uint64_t seed, double x, double y, double z) {
         const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
         const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
         v += w * (2 * cellRandom(seed, 11, ix + dx, iy + dy, iz + dz) - 1);
+    }
+    return v;
+}
+
+/// Three independent value noises at once, each in [-1, 1]: one hash per lattice corner gives
+/// all three (21 bits each), a third of the hashing of three valueNoise calls. For smooth
+/// displacements (ring wander) evaluated many times per sample.
+inline Vec3 valueNoise3(uint64_t seed, double x, double y, double z) {
+    const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
+    const long long ix = (long long)fx, iy = (long long)fy, iz = (long long)fz;
+    auto s = [](double t) { return t * t * (3 - 2 * t); };
+    const double tx = s(x - fx), ty = s(y - fy), tz = s(z - fz);
+    const uint64_t base = hashCombine(seed, 13);
+    constexpr double kUnit = 0x1.0p-21;
+    constexpr uint64_t kMask = (uint64_t(1) << 21) - 1;
+    Vec3 v;
+    for (int c = 0; c < 8; ++c) {
+        const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
+        const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
+        // Each coordinate hashed in turn: a key such as (a G) ^ b gives (a, b) and (-a, -b)
+        // the same value a third of the time, and rings would mirror across the pith.
+        const uint64_t h =
+            hashCombine(hashCombine(hashCombine(base, static_cast<uint64_t>(ix + dx)),
+                                    static_cast<uint64_t>(iy + dy)),
+                        static_cast<uint64_t>(iz + dz));
+        v.x += w * (2 * ((h >> 43) & kMask) * kUnit - 1);
+        v.y += w * (2 * ((h >> 22) & kMask) * kUnit - 1);
+        v.z += w * (2 * ((h >> 1) & kMask) * kUnit - 1);
     }
     return v;
 }
