@@ -6,6 +6,8 @@
 
 #include <cstdint>
 
+#include "grain/rgb.h"
+
 namespace nenrin {
 
 enum class PoreKind {
@@ -43,7 +45,10 @@ struct AnatomyParams {
     double poreLength = 0.003;     ///< m: one vessel run along the fibre
     double poreBand = 0.25;        ///< ring-porous: share of the ring (from its start) with pores
     double poreDarkening = 0.45;   ///< relative darkening inside an open pore
-    double poreDepth = 0.3;        ///< relief slope at a pore's wall (m/m): the pits of the normal
+    /// Per channel, the share of that darkening: open vessels of oak or chestnut are brown,
+    /// not grey, so blue darkens most (e.g. [0.8, 0.9, 1]).
+    Rgb poreTint{1, 1, 1};
+    double poreDepth = 0.3;  ///< relief slope at a pore's wall (m/m): the pits of the normal
     /// Rays: ribbons running out from the pith: lines on end grain, flecks on quarter-sawn
     /// faces, short dashes on flat-sawn faces.
     double raySpacing = 0.0015;  ///< m between rays (at 0.1 m from the pith)

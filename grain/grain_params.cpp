@@ -129,6 +129,7 @@ void readAnatomy(JsonReader& a, AnatomyParams& m) {
         m.poreLength = v->inRange("length", m.poreLength, 1e-4, 0.1);
         m.poreBand = v->inRange("band", m.poreBand, 0.01, 1);
         m.poreDarkening = v->inRange("darkening", m.poreDarkening, 0, 1);
+        if (v->has("tint")) m.poreTint = readRgb(*v, "tint", m.poreTint, 0);
         m.poreDepth = v->inRange("depth", m.poreDepth, 0, 2);
         v->finish();
     }
@@ -291,6 +292,7 @@ nlohmann::json anatomyJson(const AnatomyParams& m) {
           {"length", m.poreLength},
           {"band", m.poreBand},
           {"darkening", m.poreDarkening},
+          {"tint", rgbJson(m.poreTint)},
           {"depth", m.poreDepth}}},
         {"rays",
          {{"spacing", m.raySpacing},

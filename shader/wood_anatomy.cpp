@@ -326,9 +326,10 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
     const double ray = rays(p, f);
     const double resin = resinCanals(p, f, arc, radial, phase);
     const double b = (1 + weight * fibre) * (1 + weight * p.rayContrast * ray) *
-                     (1 - weight * p.poreDarkening * pore) *
                      (1 - weight * p.resinDarkening * resin);
-    out.filter = {b, b, b};
+    const double darkening = weight * p.poreDarkening * pore;
+    out.filter = {b * (1 - darkening * p.poreTint.r), b * (1 - darkening * p.poreTint.g),
+                  b * (1 - darkening * p.poreTint.b)};
     out.reliefGradient = out.reliefGradient * weight;
     out.pore = pore * weight;
     out.ray = ray * weight;

@@ -192,5 +192,29 @@ TEST_F(Anatomy, WideFootprintsGiveTheMeanOfTheSharpFeatures) {
     EXPECT_LT(sharp / n, 0.999);  // the features darken on average
 }
 
+// Brown vessels: with a pore tint each channel darkens by its share of the darkening, so the
+// open pores of oak or chestnut are brown, not grey; the tint (1, 1, 1) is the grey default.
+TEST_F(Anatomy, PoreTintDarkensEachChannelByItsShare) {
+    params_.pores = PoreKind::DiffusePorous;
+    params_.poreDiameter = 0.0004;
+    params_.poreSpacing = 0.0006;
+    params_.poreDarkening = 0.8;
+    params_.fibreAmplitude = 0;
+    params_.rayWidth = 0;
+    params_.poreTint = {0.4, 0.7, 1};
+    int inPores = 0;
+    for (int a = 0; a < 400; ++a) {
+        const double r = 0.05, az = 0.00002 * a;
+        const AnatomySample s = at({r * std::cos(az), r * std::sin(az), 0.3});
+        if (s.pore < 0.5) continue;
+        ++inPores;
+        // 1 - filter is the darkening each channel gets: in the tint's proportions.
+        EXPECT_NEAR((1 - s.filter.r) / (1 - s.filter.b), 0.4, 1e-9);
+        EXPECT_NEAR((1 - s.filter.g) / (1 - s.filter.b), 0.7, 1e-9);
+        EXPECT_NEAR(1 - s.filter.b, 0.8 * s.pore, 1e-9);
+    }
+    EXPECT_GT(inPores, 10);
+}
+
 }  // namespace
 }  // namespace nenrin
