@@ -11,17 +11,16 @@
 #include "grain/grown_tree.h"
 #include "renderer/bake/bake_specs.h"
 #include "renderer/bake/grid_bake.h"
+#include "skeleton/skeleton_file.h"
 
 namespace nenrin {
 namespace {
 
 void bakeSlice(benchmark::State& state, bool anatomy) {
     const std::string source = NENRIN_SOURCE_DIR;
-    auto tree = GrownTree::load(source + "/scenes/skeletons/straight-trunk.json",
-                                source + "/scenes/grain/species/hinoki.json");
-    GrainParams grain = tree->grain();
+    GrainParams grain = loadGrainFile(source + "/scenes/grain/species/hinoki.json");
     grain.anatomy.enabled = anatomy;
-    GrownTree grown(tree->skeleton(), grain);
+    GrownTree grown(loadSkeletonFile(source + "/scenes/skeletons/straight-trunk.json"), grain);
     const WoodShader shader(grown.field());
     SliceSpec spec;
     spec.cut = PlaneCut{{0.08, -0.025, 0.975}, {0, 0.05, 0}, {0, 0, 0.05}};

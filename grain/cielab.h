@@ -35,10 +35,13 @@ inline Rgb linearSrgbFromLab(const Lab& lab) {
             0.0556434 * x - 0.2040259 * y + 1.0572252 * z};
 }
 
-/// Scene-linear from sRGB-encoded components (IEC 61966-2-1): how 8-bit photos are stored.
+/// Scene-linear from an sRGB-encoded component (IEC 61966-2-1): how 8-bit photos are stored.
+inline double linearFromSrgb(double v) {
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+
 inline Rgb linearFromSrgb(const Rgb& c) {
-    auto f = [](double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); };
-    return {f(c.r), f(c.g), f(c.b)};
+    return {linearFromSrgb(c.r), linearFromSrgb(c.g), linearFromSrgb(c.b)};
 }
 
 /// sRGB-encoded from a scene-linear component (IEC 61966-2-1), clamped to [0, 1].

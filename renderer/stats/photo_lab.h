@@ -21,9 +21,4 @@ inline std::array<double, 3> photoLabFromLinear(double r, double g, double b) {
     return {116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)};
 }
 
-/// Scene-linear from an sRGB-encoded component in [0, 1] (how 8-bit photographs are stored).
-inline double linearFromSrgbComponent(double v) {
-    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-}
-
 }  // namespace nenrin

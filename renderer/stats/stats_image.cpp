@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grain/cielab.h"
 #include "renderer/image_file.h"
 #include "renderer/stats/photo_lab.h"
 #include "util/input_error.h"
@@ -103,7 +104,7 @@ StatsRgb readStatsRgb(const std::string& path) {
     for (int c = 0; c < 3; ++c) {
         out.linear[size_t(c)] = planeOf(rgb, c);
         if (!rgb.floatingPoint)
-            for (double& v : out.linear[size_t(c)].values) v = linearFromSrgbComponent(v);
+            for (double& v : out.linear[size_t(c)].values) v = linearFromSrgb(v);
     }
     return out;
 }
