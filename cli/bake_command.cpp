@@ -69,7 +69,7 @@ void print(const BakeReport& report) {
 
 struct SliceOptions {
     CommonOptions common;
-    std::string plane = "cross", size = "0.4x0.4m", res = "512x512", png;
+    std::string plane = "cross", size = "0.4x0.4m", res = "512x512", png, finish = "oiled";
     double at = 1.0, bottom = 0.0;
     std::string origin, right, up;  ///< a cut through any plane (all three, or none)
 };
@@ -129,6 +129,12 @@ void addSliceCommand(CLI::App* bake) {
         ->default_val(0.0);
     slice->add_option("--png", o->png,
                       "Also write an 8-bit sRGB preview of the colour through OpenColorIO");
+    slice
+        ->add_option("--finish", o->finish,
+                     "Surface finish of the cut: sawn = saw marks as on a sawn sample block "
+                     "(strongest on end grain); the other presets (oiled, matte, varnished, "
+                     "bare, brushed) leave a bake's colour as it is")
+        ->default_val("oiled");
     const char* planeCutNote =
         " (with --right and --up: a cut through any plane, instead of --plane, --at, --size "
         "and --bottom)";
@@ -159,7 +165,9 @@ void addSliceCommand(CLI::App* bake) {
             throw InputError(
                 "command line", "--res",
                 fmt::format("{} is over the cap of {} M pixels", o->res, kMaxImagePixels >> 20));
-        print(runSliceBake(bakeJob(o->common, o->png), spec));
+        BakeJob job = bakeJob(o->common, o->png);
+        job.finish = o->finish;
+        print(runSliceBake(job, spec));
     });
 }
 

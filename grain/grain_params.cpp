@@ -185,6 +185,8 @@ void readColour(JsonReader& c, ColourParams& cp) {
     cp.lateWoodExponent = c.inRange("late_wood_exponent", cp.lateWoodExponent, 0.1, 100);
     cp.lateWoodShare = c.inRange("late_wood_share", cp.lateWoodShare, 0, 0.9);
     cp.lateWoodTransition = c.inRange("late_wood_transition", cp.lateWoodTransition, 0.005, 0.5);
+    cp.earlyWoodRise = c.inRange("early_wood_rise", cp.earlyWoodRise, 0, 0.45);
+    cp.lateWoodRamp = c.inRange("late_wood_ramp", cp.lateWoodRamp, 0, 0.5);
     readLateWoodProfile(c, cp);
     if (auto h = c.object("heartwood")) {
         cp.heartwood = h->boolean("enabled", cp.heartwood);
@@ -247,6 +249,8 @@ nlohmann::json colourJson(const ColourParams& c) {
         {"late_wood_exponent", c.lateWoodExponent},
         {"late_wood_share", c.lateWoodShare},
         {"late_wood_transition", c.lateWoodTransition},
+        {"early_wood_rise", c.earlyWoodRise},
+        {"late_wood_ramp", c.lateWoodRamp},
         {"late_wood_profile", c.lateWoodProfile},
         {"heartwood",
          {{"enabled", c.heartwood},

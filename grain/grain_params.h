@@ -55,6 +55,8 @@ struct ColourParams {
     double lateWoodExponent = 6;       ///< n of eq. 6: larger = narrower late-wood band
     double lateWoodShare = 0;          ///< > 0: an abrupt late-wood band this share of the ring
     double lateWoodTransition = 0.05;  ///< share of the ring over which the abrupt step rises
+    double earlyWoodRise = 0;  ///< with the step: E at its start, rising through the early wood
+    double lateWoodRamp = 0;   ///< with the step: E rises from 1 - ramp across the band
     /// A measured early-to-late-wood profile (E at evenly spaced ring phases, from
     /// `nenrin grain strip`); overrides the exponent and the share when not empty.
     std::vector<double> lateWoodProfile;

@@ -1,5 +1,6 @@
 #include "grain/growth_terms.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -45,7 +46,13 @@ double lateWoodFraction(double growthTime, const LateWoodShape& shape) {
     }
     if (shape.share <= 0) return lateWoodFraction(growthTime, shape.exponent);
     double start = 1 - shape.share;
-    return smoothstep(start - 0.5 * shape.transition, start + 0.5 * shape.transition, u);
+    const double step =
+        smoothstep(start - 0.5 * shape.transition, start + 0.5 * shape.transition, u);
+    if (shape.earlyRise == 0 && shape.lateRamp == 0) return step;
+    const double x = std::min(u / start, 1.0);
+    const double early = shape.earlyRise * x * x;
+    const double ramp = 1 - shape.lateRamp * (1 - std::clamp((u - start) / shape.share, 0.0, 1.0));
+    return early + (1 - early) * step * ramp;
 }
 
 SwayWaves makeSwayWaves(const SwayParams& sway) {

@@ -161,6 +161,10 @@ double lateWoodFraction(double growthTime, double exponent);
 /// rise, as in spruce), or an abrupt step (larch, pine, Douglas fir) into a late-wood band
 /// `share` of the ring wide, over a transition `transition` of the ring:
 /// E = smoothstep(1 - share - transition/2, 1 - share + transition/2, frac(T)).
+/// The step's band need not be flat: conifer cell walls thicken through the whole season, so
+/// the early wood darkens a little towards the band (`earlyRise`: E at the band's start, rising
+/// quadratically from 0) and the band darkens towards the ring's end (`lateRamp`: E starts the
+/// band at 1 - lateRamp and reaches 1 at the boundary). Both keep E monotone within a ring.
 struct LateWoodShape {
     double exponent = 6;
     double share = 0;
@@ -168,11 +172,14 @@ struct LateWoodShape {
     /// A measured profile (nenrin grain strip): E at evenly spaced ring phases 0 … 1, linearly
     /// interpolated; overrides the two forms above when it has two or more values.
     std::vector<double> table;
+    double earlyRise = 0;  ///< 0 … 0.45, with share > 0
+    double lateRamp = 0;   ///< 0 … 0.5, with share > 0
 };
 double lateWoodFraction(double growthTime, const LateWoodShape& shape);
 /// The shape a grain's colour parameters give.
 inline LateWoodShape lateWoodShape(const ColourParams& c) {
-    return {c.lateWoodExponent, c.lateWoodShare, c.lateWoodTransition, c.lateWoodProfile};
+    return {c.lateWoodExponent, c.lateWoodShare, c.lateWoodTransition,
+            c.lateWoodProfile,  c.earlyWoodRise, c.lateWoodRamp};
 }
 
 /// Heartwood weight (3.2): 1 for T < Th1 (heartwood), 0 for T > Th2 (sapwood), linear between.

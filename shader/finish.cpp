@@ -43,10 +43,21 @@ bool finishPreset(const std::string& name, Finish& f) {
         f.bumpDepth = 1.5e-4;
         return true;
     }
+    if (name == "sawn") {
+        // Straight off the saw, unfinished: no coat, a rough surface, the teeth's striations
+        // (strongest on end grain, where they tear the fibre ends), as on a sawn sample block.
+        f.coatWeight = 0;
+        f.fibreStrength = 0.12;
+        f.fibreWidth = 0.25;
+        f.bumpDepth = 6e-6;
+        f.woodRoughness = 0.7;
+        f.sawMarks = 0.22;
+        return true;
+    }
     return false;
 }
 
-const char* finishPresetNames() { return "matte, oiled, varnished, bare, brushed"; }
+const char* finishPresetNames() { return "matte, oiled, varnished, bare, brushed, sawn"; }
 
 Finish readFinish(JsonReader& r) {
     const std::string preset = r.string("finish", "oiled");

@@ -65,10 +65,14 @@ struct TubeCell {
     double probability;
 };
 
-double tube(const WoodFrame& f, const TubeCell& c, double tPos, double rPos, long long ring,
-            uint64_t seed, uint64_t salt, Vec3* outward, double* mean) {
+double tube(const WoodFrame& f, const TubeCell& c, double rPos, long long ring, uint64_t seed,
+            uint64_t salt, Vec3* outward, double* mean) {
+    // Along the row: arc length at the row's own middle radius, so the cells' sides are rays
+    // and rings (at rho, rho * theta would shear them by theta, into slanted dashes).
+    const double row = std::floor(rPos / c.rCell);
+    const double tPos = std::max(f.rho + (row + 0.5) * c.rCell - rPos, c.rCell) * f.theta;
     const long long it = (long long)std::floor(tPos / c.tCell);
-    const long long ir = (long long)std::floor(rPos / c.rCell) + ring * 1000003;
+    const long long ir = (long long)row + ring * 1000003;
     // pi/4: an ellipse in its box.
     // pi/4 an ellipse in its box, sizes 0.7-1.3 (mean square 1.03), runs 0.5-1 of the length.
     *mean = c.probability * 0.785 * 1.03 * (2 * c.half / c.tCell) * (2 * c.half / c.rCell) *
@@ -81,9 +85,7 @@ double tube(const WoodFrame& f, const TubeCell& c, double tPos, double rPos, lon
     const double mt = std::min(0.5, half / c.tCell + 0.02),
                  mr = std::min(0.5, half / c.rCell + 0.02);
     const double ct = (it + mt + (1 - 2 * mt) * cellRandom(seed, salt + 1, it, ir)) * c.tCell;
-    const double cr =
-        (std::floor(rPos / c.rCell) + mr + (1 - 2 * mr) * cellRandom(seed, salt + 2, it, ir)) *
-        c.rCell;
+    const double cr = (row + mr + (1 - 2 * mr) * cellRandom(seed, salt + 2, it, ir)) * c.rCell;
     // Along the fibre: runs of vessel in cells of zCell, each at its own offset.
     const double zc = f.z + c.zCell * cellRandom(seed, salt + 3, it, ir);
     const long long iz = (long long)std::floor(zc / c.zCell);
@@ -164,18 +166,41 @@ double filteredNoise(uint64_t seed, const Vec3& position, const Vec3& cell, cons
     return sum;
 }
 
+/// Annuli about the axis, each with its own tangential lattice coordinate.
+constexpr double kAnnulus = 0.01;  // m
+constexpr double kAnnulusBlend = 0.15;
+
+/// filteredNoise on a polar lattice: (arc, radius, axial position). The arc is measured at the
+/// middle radius of a 1 cm annulus, so the lattice's sides are rays and circles (rho * theta
+/// itself shears the lattice by theta: at an azimuth of 1.5 rad a step outwards moves the arc
+/// 1.5 steps, and round cells became slanted streaks on end grain). Within 15 % of an annulus
+/// edge the two annuli's noises are blended, variance kept, so nothing shows at the edge.
+double polarNoise(uint64_t seed, const WoodFrame& f, const Vec3& cell, int octaves) {
+    const double x = f.rho / kAnnulus, k = std::floor(x), t = x - k;
+    auto at = [&](double annulus) {
+        return filteredNoise(seed, {(annulus + 0.5) * kAnnulus * f.theta, f.rho, f.z}, cell, f,
+                             octaves);
+    };
+    double w = 0, neighbour = k;
+    if (t < kAnnulusBlend && k > 0)
+        w = 0.5 * (1 - t / kAnnulusBlend), neighbour = k - 1;
+    else if (t > 1 - kAnnulusBlend)
+        w = 0.5 * (1 - (1 - t) / kAnnulusBlend), neighbour = k + 1;
+    if (w == 0) return at(k);
+    return ((1 - w) * at(k) + w * at(neighbour)) / std::sqrt((1 - w) * (1 - w) + w * w);
+}
+
 /// Fibre streaks: long along the fibre, narrow across it.
-double fibreStreaks(const AnatomyParams& p, const WoodFrame& f, double arc) {
+double fibreStreaks(const AnatomyParams& p, const WoodFrame& f) {
     if (p.fibreAmplitude <= 0) return 0;
-    return p.fibreAmplitude * filteredNoise(p.seed, {arc, f.rho, f.z},
-                                            {p.fibreWidth, p.fibreWidth, p.fibreLength}, f, 1);
+    return p.fibreAmplitude * polarNoise(p.seed, f, {p.fibreWidth, p.fibreWidth, p.fibreLength}, 1);
 }
 
 /// Broad streaks of tone along the grain.
-double toneStreaks(const AnatomyParams& p, const WoodFrame& f, double arc) {
+double toneStreaks(const AnatomyParams& p, const WoodFrame& f) {
     if (p.streakAmplitude <= 0) return 0;
-    return p.streakAmplitude * filteredNoise(p.seed + 57, {arc, f.rho, f.z},
-                                             {p.streakWidth, p.streakWidth, p.streakLength}, f, 2);
+    return p.streakAmplitude *
+           polarNoise(p.seed + 57, f, {p.streakWidth, p.streakWidth, p.streakLength}, 2);
 }
 
 /// Each ring's own tone, seeded by its year; averaged away once a footprint spans rings.
@@ -196,17 +221,17 @@ double ringTone(const AnatomyParams& p, const WoodFrame& f) {
 
 /// The cells themselves: a granular speckle at the scale of a few fibres, slightly drawn out
 /// along them (what a photograph shows between the rings at 0.2 mm a pixel).
-double speckle(const AnatomyParams& p, const WoodFrame& f, double arc) {
+double speckle(const AnatomyParams& p, const WoodFrame& f) {
     if (p.speckleAmplitude <= 0) return 0;
     return p.speckleAmplitude *
-           filteredNoise(p.seed + 31, {arc, f.rho, f.z},
-                         {p.speckleSize, p.speckleRadial > 0 ? p.speckleRadial : p.speckleSize,
-                          p.speckleLength},
-                         f, 2);
+           polarNoise(p.seed + 31, f,
+                      {p.speckleSize, p.speckleRadial > 0 ? p.speckleRadial : p.speckleSize,
+                       p.speckleLength},
+                      2);
 }
 
 /// Vessels: their filtered coverage; `relief` gets the pit's slope.
-double vessels(const AnatomyParams& p, const WoodFrame& f, double arc, double radial, double phase,
+double vessels(const AnatomyParams& p, const WoodFrame& f, double radial, double phase,
                Vec3& relief) {
     double pore = 0;
     if (p.pores != PoreKind::None) {
@@ -232,7 +257,7 @@ double vessels(const AnatomyParams& p, const WoodFrame& f, double arc, double ra
         if (here) {
             Vec3 outward;
             double mean = 0;
-            double cov = tube(f, c, arc, rPos, ring, p.seed, 101, &outward, &mean);
+            double cov = tube(f, c, rPos, ring, p.seed, 101, &outward, &mean);
             const double keep =
                 std::min(detail(std::max(f.ft, f.fr), p.poreSpacing), detail(f.fz, c.zCell));
             pore = keep * cov + (1 - keep) * mean;
@@ -288,8 +313,7 @@ double rays(const AnatomyParams& p, const WoodFrame& f) {
 }
 
 /// Resin canals: sparse ducts in the late wood.
-double resinCanals(const AnatomyParams& p, const WoodFrame& f, double arc, double radial,
-                   double phase) {
+double resinCanals(const AnatomyParams& p, const WoodFrame& f, double radial, double phase) {
     double resin = 0;
     if (p.resinSpacing > 0 && phase > 0.55) {
         TubeCell c{p.resinSpacing,
@@ -299,7 +323,7 @@ double resinCanals(const AnatomyParams& p, const WoodFrame& f, double arc, doubl
                    std::min(0.5 * p.resinDiameter, 0.35 * p.resinSpacing),
                    0.3};
         double mean = 0;
-        double cov = tube(f, c, arc, radial, 0, p.seed, 301, nullptr, &mean);
+        double cov = tube(f, c, radial, 0, p.seed, 301, nullptr, &mean);
         const double keep =
             std::min(detail(std::max(f.ft, f.fr), p.resinSpacing), detail(f.fz, c.zCell));
         resin = keep * cov + (1 - keep) * mean;
@@ -317,14 +341,12 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
     if (!p.enabled || weight <= 0) return out;
     WoodFrame f;
     if (!woodFrameAt(axis, T, point, gradT, dpdx, dpdy, diameter, f)) return out;
-    const double arc = f.rho * f.theta;   // tangential position (m)
     const double radial = f.T / f.gradT;  // radial position (m), rings at their true spacing
     const double phase = f.T - std::floor(f.T);
-    const double fibre =
-        fibreStreaks(p, f, arc) + speckle(p, f, arc) + toneStreaks(p, f, arc) + ringTone(p, f);
-    const double pore = vessels(p, f, arc, radial, phase, out.reliefGradient);
+    const double fibre = fibreStreaks(p, f) + speckle(p, f) + toneStreaks(p, f) + ringTone(p, f);
+    const double pore = vessels(p, f, radial, phase, out.reliefGradient);
     const double ray = rays(p, f);
-    const double resin = resinCanals(p, f, arc, radial, phase);
+    const double resin = resinCanals(p, f, radial, phase);
     const double b = (1 + weight * fibre) * (1 + weight * p.rayContrast * ray) *
                      (1 - weight * p.resinDarkening * resin);
     const double darkening = weight * p.poreDarkening * pore;

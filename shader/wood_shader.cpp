@@ -6,6 +6,7 @@
 #include "grain/growth_terms.h"
 #include "grain/wood_colour.h"
 #include "shader/bark.h"
+#include "shader/saw_marks.h"
 #include "shader/wood_anatomy.h"
 
 namespace nenrin {
@@ -153,6 +154,12 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
             anatomyRelief = applyAnatomy(
                 s, treePoints[i], footprints.empty() ? SurfaceFootprint{} : footprints[i],
                 1 + colour.endGrainTexture * endGrain, 1 + colour.endGrainContrast * endGrain, o);
+        if (!footprints.empty() && !outside && finish_.sawMarks > 0) {
+            const SurfaceFootprint& f = footprints[i];
+            const SawMarkSample m = sawMarks(finish_, treePoints[i], f.dpdx, f.dpdy, endGrain);
+            o.albedo = o.albedo * (1 + m.brightness);
+            anatomyRelief = anatomyRelief + m.reliefGradient;
+        }
         if (!footprints.empty() && !outside && lengthSquared(footprints[i].normal) > 0)
             o.albedo = endGrainAlbedo(
                 o.albedo, std::abs(dot(normalize(footprints[i].normal), o.fibre)), colour);

@@ -46,9 +46,14 @@ LoadedWood loadWood(const BakeJob& job) {
                              fmt::format("\"{}\": expected years >= 0 or 'auto'", job.fellingTime));
         grain.fellingTime = t;
     }
+    Finish finish;
+    if (!finishPreset(job.finish, finish))
+        throw InputError(
+            "command line", "--finish",
+            fmt::format("expected one of {}, found \"{}\"", finishPresetNames(), job.finish));
     LoadedWood w;
     w.tree = std::make_unique<GrownTree>(std::move(skeleton), std::move(grain));
-    w.shader = std::make_unique<WoodShader>(w.tree->field());
+    w.shader = std::make_unique<WoodShader>(w.tree->field(), finish);
     return w;
 }
 
@@ -56,6 +61,7 @@ void addMetadata(BakedGrid& grid, const BakeJob& job, const GrownTree& tree) {
     grid.metadata["version"] = NENRIN_VERSION;
     grid.metadata["skeleton"] = job.skeleton;
     grid.metadata["grain"] = grainToJson(tree.grain()).dump();
+    grid.metadata["finish"] = job.finish;
     grid.metadata["channels"] =
         "R,G,B: scene-linear albedo; A: coverage (0 outside the felled log); T: growth time "
         "(years); knot: branch share (0..1)";

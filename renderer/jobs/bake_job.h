@@ -18,6 +18,9 @@ struct BakeJob {
     std::string grain;   ///< empty: the default grain
     std::string output;  ///< slice: .exr; volume: .exr, .vdb or .df3
     std::string png;     ///< slice only: an 8-bit sRGB preview
+    /// Slice only: the surface finish preset the cut shows (shader/finish.h; only "sawn"
+    /// changes the albedo: saw marks).
+    std::string finish = "oiled";
     /// Years, or "auto" (the years of the skeleton's ring_widths); empty: the grain file's.
     std::string fellingTime;
     int threads = 0;

@@ -1,5 +1,5 @@
 // bake slice --origin/--right/--up (issue 30): a cut through any plane equals the named plane
-// bakes for the same plane, and bad cuts are refused before anything is written.
+// bakes for the same plane, and bad cuts are refused before anything is written; --finish.
 
 #include <gtest/gtest.h>
 
@@ -93,6 +93,29 @@ TEST_F(PlaneCutCliTest, BadPlaneCutsAreRefused) {
     EXPECT_NE(both.exitCode, 0);
     EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
     EXPECT_EQ(outputFiles(), std::vector<std::string>{});
+}
+
+// --finish sawn: the cut shows saw marks (a sawn sample block); the default, oiled, leaves the
+// bake as it was; an unknown finish is refused naming the option and the presets.
+TEST_F(PlaneCutCliTest, TheSawnFinishAddsSawMarksToTheCut) {
+    const std::string grain = grainScene("species/hinoki.json").string();
+    auto bake = [&](const std::string& finish, const std::string& name) {
+        return slice({{"--grain", grain},
+                      {"--plane", "cross"},
+                      {"--size", "0.02x0.02m"},
+                      {"--res", "64x64"},
+                      {"--finish", finish},
+                      {"-o", (out_ / name).string()}});
+    };
+    ASSERT_EQ(bake(kOmit, "default.exr").exitCode, 0);
+    ASSERT_EQ(bake("oiled", "oiled.exr").exitCode, 0);
+    ASSERT_EQ(bake("sawn", "sawn.exr").exitCode, 0);
+    EXPECT_EQ(largestDifference(out_ / "default.exr", out_ / "oiled.exr"), 0);
+    const double marks = largestDifference(out_ / "oiled.exr", out_ / "sawn.exr");
+    EXPECT_GT(marks, 0.01);  // saw marks change the colour ...
+    EXPECT_LT(marks, 0.5);   // ... by a fraction of it
+    for (const char* name : {"default.exr", "oiled.exr", "sawn.exr"}) fs::remove(out_ / name);
+    expectInputError(bake("polished", "bad.exr"), {"--finish", "sawn", "polished"});
 }
 
 }  // namespace

@@ -138,6 +138,33 @@ TEST(GrowthTerms, LateWoodFractionFollowsEquation6) {
     EXPECT_LT(lateWoodFraction(3.5, 8), lateWoodFraction(3.5, 2));  // n narrows late wood
 }
 
+TEST(GrowthTerms, AbruptLateWoodDarkensTowardsTheRingsEnd) {
+    // A band of 0.2 of the ring from phase 0.8, stepping over 0.02; the early wood rising to
+    // 0.1 at the band, the band rising from 1 - 0.4 to 1.
+    LateWoodShape shape;
+    shape.share = 0.2;
+    shape.transition = 0.02;
+    shape.earlyRise = 0.1;
+    shape.lateRamp = 0.4;
+    EXPECT_DOUBLE_EQ(lateWoodFraction(7.0, shape), 0);             // the ring's start
+    EXPECT_NEAR(lateWoodFraction(7.4, shape), 0.1 * 0.25, 1e-12);  // (0.4 / 0.8)^2
+    EXPECT_NEAR(lateWoodFraction(7.79, shape), 0.1 * (0.79 / 0.8) * (0.79 / 0.8), 1e-12);
+    EXPECT_NEAR(lateWoodFraction(7.81, shape), 0.1 + 0.9 * 0.6 * 1.0 + 0.9 * 0.4 * 0.05, 1e-12);
+    EXPECT_NEAR(lateWoodFraction(7.9, shape), 0.1 + 0.9 * (1 - 0.4 * 0.5), 1e-12);
+    EXPECT_NEAR(lateWoodFraction(7.999999, shape), 1, 1e-5);  // darkest at the boundary
+    // Monotone within the ring (the late-wood share is read where E crosses 0.5).
+    double last = -1;
+    for (int i = 0; i < 1000; ++i) {
+        const double e = lateWoodFraction(7 + i / 1000.0, shape);
+        EXPECT_GE(e, last) << i;
+        last = e;
+    }
+    // Without the two, the plain step.
+    shape.earlyRise = shape.lateRamp = 0;
+    EXPECT_DOUBLE_EQ(lateWoodFraction(7.4, shape), 0);
+    EXPECT_DOUBLE_EQ(lateWoodFraction(7.9, shape), 1);
+}
+
 TEST(GrowthTerms, HeartwoodWeight) {
     EXPECT_DOUBLE_EQ(heartwoodWeight(5, 10, 20), 1);
     EXPECT_DOUBLE_EQ(heartwoodWeight(15, 10, 20), 0.5);
