@@ -34,6 +34,11 @@ double rayStart(long long j, uint64_t seed) {
     return kRaysComplete * std::ldexp(1.0, -t) * (0.75 + 0.5 * cellRandom(seed, 205, j, 0));
 }
 
+/// A ray's tangential wavering: amplitude in ray widths, wavelengths radially and axially (m).
+constexpr double kRayWaver = 2;
+constexpr double kRayWaverRadial = 0.012;
+constexpr double kRayWaverAxial = 0.008;
+
 /// Share of the base level's rays running at radius rho (the mean of rayStart's test).
 double raysStarted(double rho) {
     double share = 0, weight = 0.5;
@@ -284,7 +289,13 @@ double rays(const AnatomyParams& p, const WoodFrame& f) {
             if (k > 0 && cellRandom(p.seed, 200 + k, j, 0) < 0.5) continue;
             if (k == 0 && f.rho < rayStart(j, p.seed)) continue;
             const double centre = std::floor(u) + 0.2 + 0.6 * cellRandom(p.seed, 210 + k, j, 0);
-            const double dt = (u - centre) / double(n) * kTwoPi * f.rho;  // m
+            // A ray sheet is not a perfect plane through the pith: it wavers tangentially by a
+            // few of its widths over millimetres, so a radial cut (quarter-sawn) passes in and
+            // out of it and shows flecks, not all of a ray or none.
+            const double waver = kRayWaver * p.rayWidth *
+                                 valueNoise(p.seed + 290 + k, double(j), f.rho / kRayWaverRadial,
+                                            f.z / kRayWaverAxial);
+            const double dt = (u - centre) / double(n) * kTwoPi * f.rho + waver;  // m
             const double zc = f.z + zCell * cellRandom(p.seed, 220 + k, j, 0);
             const long long iz = (long long)std::floor(zc / zCell);
             const double h = p.rayHeight * (0.6 + 0.8 * cellRandom(p.seed, 230 + k, j, iz));
