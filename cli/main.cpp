@@ -9,6 +9,7 @@
 
 #include "bake_command.h"
 #include "farm_command.h"
+#include "furniture_command.h"
 #include "grain_command.h"
 #include "pov_command.h"
 #include "render_command.h"
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     nenrin::addTreeCommands(app);
     nenrin::addStandCommands(app);
     nenrin::addStatsCommand(app);
+    nenrin::addFurnitureCommand(app);
     try {
         // Every output of the command reaches its final name only if the command succeeds.
         nenrin::OutputTransaction outputs;

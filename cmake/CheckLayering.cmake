@@ -14,13 +14,14 @@ set(sources_of_library
     "shader:grain,skeleton,util"
     "renderer/geometry:util"
     "renderer/products:geometry,grain,skeleton,util"
+    "renderer/furniture:renderer/products,renderer/geometry,grain,skeleton,util"
     "renderer:renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/bake:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/texture_set:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/pov:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/preview:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/farm:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
-    "renderer/jobs:renderer/farm,renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
+    "renderer/jobs:renderer/farm,renderer/bake,renderer/furniture,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/stats:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "cli:*")
 

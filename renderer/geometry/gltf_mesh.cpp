@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 
 #include "util/atomic_output.h"
 #include "util/input_error.h"
@@ -369,16 +370,34 @@ TriangleMesh loadGltfMesh(const std::string& path) {
     TriangleMesh mesh;
     Reader reader(path, model);
     AttributeCounts counts;
+    std::map<int, int> placed;  // instances of each mesh so far
     for (const auto& [meshIndex, world] : instances) {
         if (meshIndex >= int(model.meshes.size()))
             throw InputError(path, fmt::format("mesh {}", meshIndex), "the mesh does not exist");
         const tinygltf::Mesh& m = model.meshes[meshIndex];
+        const int instance = placed[meshIndex]++;
         for (size_t p = 0; p < m.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = m.primitives[p];
             if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;
             const std::string where =
                 fmt::format("mesh {} (\"{}\"), primitive {}", meshIndex, m.name, p);
             appendPrimitive(model, prim, world, reader, path, where, mesh, counts);
+            // Labels: the mesh's name (its instance and primitive when there are several),
+            // the primitive's material name.
+            std::string group = m.name.empty() ? fmt::format("mesh{}", meshIndex) : m.name;
+            if (instance > 0) group += fmt::format(".{}", instance);
+            if (m.primitives.size() > 1) group += fmt::format(".p{}", p);
+            std::string material;
+            if (prim.material >= 0 && prim.material < int(model.materials.size()))
+                material = model.materials[prim.material].name;
+            auto label = [](std::vector<std::string>& names, const std::string& name) {
+                auto it = std::find(names.begin(), names.end(), name);
+                if (it == names.end()) it = names.insert(names.end(), name);
+                return static_cast<uint32_t>(it - names.begin());
+            };
+            mesh.triangleGroups.resize(mesh.triangles.size(), label(mesh.groupNames, group));
+            mesh.triangleMaterials.resize(mesh.triangles.size(),
+                                          label(mesh.materialNames, material));
         }
     }
     checkMesh(mesh, counts, path);

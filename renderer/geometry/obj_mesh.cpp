@@ -35,6 +35,7 @@ constexpr size_t kBestEarCorners = 16;
 struct FaceLine {
     size_t line;
     uint32_t corners;
+    uint32_t material;  ///< index into the scan's material names
 };
 
 bool isBlank(char c) { return c == ' ' || c == '\t'; }
@@ -99,10 +100,15 @@ public:
                 ++uvs_;
             } else if (is("f")) {
                 face(s.substr(2));
+            } else if (is("usemtl")) {
+                useMaterial(s.substr(7));
             }
         });
         return std::move(faces_);
     }
+
+    /// The `usemtl` names in first-use order ("" for faces before any).
+    const std::vector<std::string>& materials() const { return materialNames_; }
 
 private:
     InputError error(const std::string& message) const {
@@ -140,7 +146,15 @@ private:
         if (corners.size() < 3)
             throw error(fmt::format("a face needs at least 3 corners, found {}", corners.size()));
         for (size_t k = 0; k < corners.size(); ++k) corner(corners[k], k + 1);
-        faces_.push_back({line_, static_cast<uint32_t>(corners.size())});
+        faces_.push_back({line_, static_cast<uint32_t>(corners.size()), material_});
+    }
+
+    void useMaterial(std::string_view rest) {
+        const auto tokens = splitAtBlanks(rest.substr(0, rest.find('#')));
+        const std::string name = tokens.empty() ? "" : std::string(tokens[0]);
+        auto it = std::find(materialNames_.begin(), materialNames_.end(), name);
+        material_ = static_cast<uint32_t>(it - materialNames_.begin());
+        if (it == materialNames_.end()) materialNames_.push_back(name);
     }
 
     void corner(std::string_view token, size_t k) {
@@ -206,6 +220,8 @@ private:
     size_t firstFaceLine_ = 0;
     bool hasUv_ = false, hasNormal_ = false;
     std::vector<FaceLine> faces_;
+    std::vector<std::string> materialNames_{""};
+    uint32_t material_ = 0;
 };
 
 std::string readText(const std::string& path) {
@@ -395,13 +411,18 @@ private:
 
 TriangleMesh loadObjMesh(const std::string& path) {
     const std::string text = readText(path);
-    const std::vector<FaceLine> faces = Scanner(path).scan(text);
+    Scanner scanner(path);
+    const std::vector<FaceLine> faces = scanner.scan(text);
     const ObjContent obj = parseObj(path, text, faces);
     TriangleMesh mesh;
+    mesh.materialNames = scanner.materials();
     VertexTable vertices(path, obj.attrib, mesh);
     std::vector<uint32_t> polygon;
     size_t face = 0;
     for (const auto& shape : obj.shapes) {
+        auto group = std::find(mesh.groupNames.begin(), mesh.groupNames.end(), shape.name);
+        const auto groupId = static_cast<uint32_t>(group - mesh.groupNames.begin());
+        if (group == mesh.groupNames.end()) mesh.groupNames.push_back(shape.name);
         size_t offset = 0;
         for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face) {
             const std::string where = fmt::format("line {}", faces[face].line);
@@ -417,6 +438,8 @@ TriangleMesh loadObjMesh(const std::string& path) {
                 polygon.push_back(vertices.vertexOf(shape.mesh.indices[offset + k], k, where));
             offset += corners;
             triangulate(polygon, mesh.positions, mesh.triangles);
+            mesh.triangleGroups.resize(mesh.triangles.size(), groupId);
+            mesh.triangleMaterials.resize(mesh.triangles.size(), faces[face].material);
         }
     }
     return mesh;

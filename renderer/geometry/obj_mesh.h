@@ -18,6 +18,10 @@ struct TriangleMesh {
     std::vector<Vec3> normals;  ///< per vertex, unit length; empty if the file has none
     std::vector<std::array<double, 2>> uvs;  ///< per vertex; empty if the file has none
     std::vector<std::array<uint32_t, 3>> triangles;
+    /// Per triangle, the loaders' labels: its group (an OBJ object or group, a glTF node's
+    /// primitive) and its material, indices into the name lists. Empty when not known.
+    std::vector<uint32_t> triangleGroups, triangleMaterials;
+    std::vector<std::string> groupNames, materialNames;
 };
 
 /// Loads a Wavefront OBJ (all objects/groups merged, polygons triangulated). Throws InputError
@@ -30,8 +34,10 @@ struct TriangleMesh {
 /// line). Vertices are numbered in the order their (v, vt, vn) triple first appears, so the
 /// same file always gives the same arrays. Polygons keep their winding; a quad is split along
 /// its shorter diagonal, larger (also concave) polygons by ear clipping in their plane.
-/// Zero-area triangles are kept. Materials, groups, smoothing groups, lines (`l`) and points
-/// (`p`) are ignored. Coordinates pass through tinyobjloader's single-precision floats.
+/// Zero-area triangles are kept. Each triangle is labelled with its object/group (`o`/`g`: the
+/// name tinyobjloader gives its shape; "" before any) and its `usemtl` material name ("" before
+/// any); .mtl files are not read. Smoothing groups, lines (`l`) and points (`p`) are ignored.
+/// Coordinates pass through tinyobjloader's single-precision floats.
 TriangleMesh loadObjMesh(const std::string& path);
 
 /// Axis-aligned bounds of the positions (an empty mesh gives lower = +inf, upper = -inf).

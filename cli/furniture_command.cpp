@@ -1,0 +1,55 @@
+#include "furniture_command.h"
+
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "renderer/jobs/furniture_job.h"
+
+namespace nenrin {
+
+void addFurnitureCommand(CLI::App& app) {
+    auto job = std::make_shared<FurnitureJob>();
+    auto* cmd = app.add_subcommand(
+        "furniture",
+        "A piece of furniture in solid wood: the model's parts (objects, groups, glTF meshes, "
+        "then\n"
+        "each one's connected pieces), every wood part its own board from the log with its fibre\n"
+        "along the part's longest axis. Writes DIR/parts.json (the plan: edit it and pass it back\n"
+        "with --plan), DIR/parts/*.obj (in metres), DIR/scene.json (a nenrin scene of the model,\n"
+        "camera framing it) and DIR/preview.png rendered from it (docs/furniture.md).");
+    cmd->add_option("model", job->model, "The model: Wavefront OBJ or glTF 2.0 (.gltf, .glb)")
+        ->required();
+    cmd->add_option("--grain", job->grain, "Grain file of the wood (a species preset)")->required();
+    cmd->add_option("-o,--output", job->output, "Output folder (created if missing)")->required();
+    cmd->add_option("--skeleton", job->skeleton,
+                    "The log's skeleton; default: a straight trunk 10 m tall");
+    cmd->add_option("--unit", job->unit, "The model's unit: mm, cm or m")
+        ->check(CLI::IsMember({"mm", "cm", "m"}))
+        ->default_val("m");
+    cmd->add_option("--plan", job->plan,
+                    "A parts.json of an earlier run, edited: per part wood (true/false), grain, "
+                    "fibre, requested_sawing (flat, quarter, mixed) and seed are taken from it");
+    cmd->add_option("--sawing", job->sawing, "Wide faces flat-, quarter-sawn or mixed")
+        ->check(CLI::IsMember({"flat", "quarter", "mixed"}))
+        ->default_val("mixed");
+    cmd->add_option("--seed", job->seed, "Cut plan seed: another seed, other boards")
+        ->default_val(1);
+    cmd->add_option("--res", job->previewWidth, "Width of preview.png in pixels (height 3/4)")
+        ->check(CLI::Range(16, 8192))
+        ->default_val(640);
+    cmd->add_option("--threads", job->threads, "Worker threads (0 = all cores)")
+        ->check(CLI::Range(0, 1024))
+        ->default_val(0);
+    cmd->add_flag("-q,--quiet", job->quiet, "No progress bar");
+    cmd->callback([job] {
+        job->previewHeight = std::max(12, job->previewWidth * 3 / 4);
+        FurnitureReport report = runFurnitureJob(*job);
+        for (const std::string& w : report.warnings) fmt::print(stderr, "warning: {}\n", w);
+        for (const std::string& f : report.written) fmt::print("wrote {}\n", f);
+        fmt::print("{} parts, {} of them wood, each its own board\n", report.parts,
+                   report.woodParts);
+    });
+}
+
+}  // namespace nenrin

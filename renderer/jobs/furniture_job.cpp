@@ -1,0 +1,267 @@
+#include "renderer/jobs/furniture_job.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <numbers>
+
+#include "renderer/colour_management.h"
+#include "renderer/furniture/furniture_plan.h"
+#include "renderer/furniture/model_parts.h"
+#include "renderer/path_tracer.h"
+#include "renderer/scene_file.h"
+#include "util/atomic_output.h"
+#include "util/input_error.h"
+
+namespace nenrin {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// The log when the user gives none: a straight trunk 10 m tall (concentric rings).
+constexpr const char* kStraightTrunk =
+    "{\n  \"description\": \"nenrin furniture's default log: a straight trunk, 10 m tall\",\n"
+    "  \"elongation_speed\": 0.5,\n  \"trunk\": { \"points\": [[0, 0, 0], [0, 0, 10]] }\n}\n";
+
+/// The diagonal (m) of furniture, from a footstool to a wardrobe: outside it, a warning.
+constexpr double kPlausibleSize[2] = {0.25, 8};
+
+/// A folder name-safe version of a part's name.
+std::string fileName(size_t index, const std::string& name) {
+    std::string safe;
+    for (char c : name)
+        safe += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+    return fmt::format("{:03d}-{}.obj", index, safe.substr(0, 64));
+}
+
+std::string objText(const TriangleMesh& m) {
+    std::string s = "# a part written by nenrin furniture (metres)\n";
+    for (const Vec3& p : m.positions) s += fmt::format("v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
+    for (const auto& uv : m.uvs) s += fmt::format("vt {:.9g} {:.9g}\n", uv[0], uv[1]);
+    for (const Vec3& n : m.normals) s += fmt::format("vn {:.9g} {:.9g} {:.9g}\n", n.x, n.y, n.z);
+    const bool uv = !m.uvs.empty(), normal = !m.normals.empty();
+    auto corner = [&](uint32_t v) {
+        const uint32_t i = v + 1;
+        if (uv && normal) return fmt::format("{}/{}/{}", i, i, i);
+        if (uv) return fmt::format("{}/{}", i, i);
+        if (normal) return fmt::format("{}//{}", i, i);
+        return fmt::format("{}", i);
+    };
+    for (const auto& t : m.triangles)
+        s += fmt::format("f {} {} {}\n", corner(t[0]), corner(t[1]), corner(t[2]));
+    return s;
+}
+
+nlohmann::json vec(const Vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+
+/// scene.json: every part a mesh in its own place in the log, a camera framing the model from
+/// the front right, above (+y up), a sun and sky, a floor under it.
+nlohmann::json sceneJson(const std::vector<PartPlan>& plan, const std::vector<std::string>& files,
+                         const std::string& skeleton, const TriangleMesh& model,
+                         const FurnitureJob& job) {
+    Vec3 lo, hi;
+    meshBounds(model, lo, hi);
+    const Vec3 centre = (lo + hi) * 0.5;
+    const double radius = std::max(0.5 * length(hi - lo), 1e-3);
+    const double fov = 35;
+    const double distance = 1.15 * radius / std::tan(0.5 * fov * std::numbers::pi / 180);
+    const Vec3 eye = centre + normalize(Vec3{1.0, 0.55, 1.5}) * distance;
+    nlohmann::json materials = nlohmann::json::array(), objects = nlohmann::json::array();
+    std::map<std::string, std::string> woodByGrain;
+    for (const PartPlan& p : plan)
+        if (p.wood && !woodByGrain.count(p.grain)) {
+            const std::string name = fmt::format("wood-{}", woodByGrain.size());
+            woodByGrain[p.grain] = name;
+            nlohmann::json m = {{"name", name}, {"type", "wood"}, {"skeleton", skeleton}};
+            if (!p.grain.empty()) m["grain"] = fs::absolute(p.grain).string();
+            materials.push_back(m);
+        }
+    materials.push_back({{"name", "not-wood"}, {"type", "diffuse"}, {"colour", 0.45}});
+    materials.push_back({{"name", "floor"}, {"type", "diffuse"}, {"colour", 0.6}});
+    for (size_t i = 0; i < plan.size(); ++i) {
+        const PartPlan& p = plan[i];
+        nlohmann::json o = {{"type", "mesh"}, {"name", p.name}, {"file", "parts/" + files[i]}};
+        if (p.wood && p.board) {
+            o["material"] = woodByGrain[p.grain];
+            o["log"] = {{"position", vec(p.treeFromModel.origin)},
+                        {"rotate", vec(logRotateDegrees(p.treeFromModel))}};
+        } else {
+            o["material"] = "not-wood";
+        }
+        objects.push_back(o);
+    }
+    const Vec3 floor{6 * radius, 0.01 * radius, 6 * radius};
+    objects.push_back({{"type", "box"},
+                       {"name", "floor"},
+                       {"size", vec(floor)},
+                       {"position", vec({centre.x, lo.y - 0.5 * floor.y, centre.z})},
+                       {"material", "floor"}});
+    return {{"description", fmt::format("{} in solid wood: every part its own board (nenrin "
+                                        "furniture; parts.json)",
+                                        fs::path(job.model).filename().string())},
+            {"camera", {{"position", vec(eye)}, {"look_at", vec(centre)}, {"fov", fov}}},
+            {"render",
+             {{"resolution", {job.previewWidth, job.previewHeight}},
+              {"spp", job.previewSpp},
+              {"max_depth", 3},
+              {"seed", 1}}},
+            {"lights", nlohmann::json::array(
+                           {{{"type", "sun"}, {"direction", {0.4, 0.8, 0.5}}, {"irradiance", 3}},
+                            {{"type", "environment"}, {"colour", {0.45, 0.47, 0.5}}}})},
+            {"materials", materials},
+            {"objects", objects}};
+}
+
+/// A private folder (under the system's temporary folder) for the files the preview render
+/// reads, removed however the job ends.
+class WorkFolder {
+public:
+    WorkFolder()
+        : path_(fs::temp_directory_path() / fmt::format("nenrin-furniture-{}", ::getpid())) {
+        fs::remove_all(path_);
+        fs::create_directories(path_ / "parts");
+    }
+    ~WorkFolder() {
+        std::error_code ignored;
+        fs::remove_all(path_, ignored);
+    }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+void writePlain(const fs::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw InputError(path.string(), "", "cannot write (disk full?)");
+}
+
+}  // namespace
+
+double metresPerUnit(const std::string& unit) {
+    if (unit == "m") return 1;
+    if (unit == "cm") return 0.01;
+    if (unit == "mm") return 0.001;
+    throw InputError("command line", "--unit",
+                     fmt::format("expected mm, cm or m, found \"{}\"", unit));
+}
+
+Vec3 logRotateDegrees(const RigidTransform& treeFromObject) {
+    const RigidTransform standing =
+        RigidTransform::fromAxes({1, 0, 0}, {0, 0, 1}, {0, -1, 0}, {0, 0, 0});
+    RigidTransform r = treeFromObject;
+    r.origin = {};
+    const RigidTransform m = standing.inverse() * r;  // = Rz(c) Ry(b) Rx(a)
+    const double deg = 180 / std::numbers::pi;
+    const double sb = std::clamp(-m.x.z, -1.0, 1.0);
+    if (std::abs(sb) > 1 - 1e-12)  // gimbal lock: only a - c (or a + c) is defined
+        return {0, std::asin(sb) * deg, std::atan2(-m.y.x, m.y.y) * deg};
+    return {std::atan2(m.y.z, m.z.z) * deg, std::asin(sb) * deg, std::atan2(m.x.y, m.x.x) * deg};
+}
+
+FurnitureReport runFurnitureJob(const FurnitureJob& job) {
+    const double scale = metresPerUnit(job.unit);
+    const fs::path out = job.output;
+    if (fs::exists(out) && !fs::is_directory(out))
+        throw InputError("command line", "-o", fmt::format("{}: not a folder", job.output));
+    // The folder, or the one it will be made in, must be writable before the work starts.
+    const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
+    checkOutputPath(((fs::is_directory(out) ? out : parent) / "parts.json").string());
+    FurnitureReport report;
+
+    TriangleMesh model = loadFurnitureModel(job.model, scale);
+    Vec3 lo, hi;
+    meshBounds(model, lo, hi);
+    const double diagonal = length(hi - lo);
+    std::string sizeWarning;
+    if (diagonal < kPlausibleSize[0] || diagonal > kPlausibleSize[1])
+        sizeWarning = fmt::format(
+            "the model is {:.3g} m across in --unit {}: implausible for furniture (is the unit "
+            "right? the chair of sweethome3d-furniture is in cm)",
+            diagonal, job.unit);
+    if (!sizeWarning.empty()) report.warnings.push_back(sizeWarning);
+    const std::vector<ModelPart> parts = splitModelParts(model, job.model);
+
+    FurniturePlanRequest request;
+    request.grain = job.grain;
+    request.cut.seed = static_cast<uint64_t>(job.seed);
+    request.cut.sawing = job.sawing == "flat"      ? Sawing::Flat
+                         : job.sawing == "quarter" ? Sawing::Quarter
+                                                   : Sawing::Mixed;
+    if (!job.plan.empty()) request.choices = readPlanChoices(job.plan);
+    WorkFolder work;
+    std::string skeleton = job.skeleton;
+    if (skeleton.empty()) {
+        writePlain(work.path() / "skeleton.json", kStraightTrunk);
+        skeleton = (work.path() / "skeleton.json").string();
+    }
+    request.skeleton = skeleton;
+    TreeCache trees;
+    std::vector<PartPlan> plan;
+    try {
+        plan = planFurniture(parts, request, trees);
+    } catch (const InputError& e) {
+        // A board too big for the log is most often a model in other units: say so.
+        if (sizeWarning.empty()) throw;
+        throw InputError(e.file(), e.where(), e.message() + "; " + sizeWarning);
+    }
+
+    // The parts and the scene, first in the work folder for the preview render.
+    std::vector<std::string> files;
+    for (size_t i = 0; i < parts.size(); ++i) files.push_back(fileName(i, parts[i].name));
+    const std::string finalSkeleton = job.skeleton.empty()
+                                          ? (fs::absolute(out) / "skeleton.json").string()
+                                          : fs::absolute(job.skeleton).string();
+    nlohmann::json scene = sceneJson(plan, files, fs::absolute(skeleton).string(), model, job);
+    for (size_t i = 0; i < parts.size(); ++i)
+        writePlain(work.path() / "parts" / files[i], objText(parts[i].mesh));
+    writePlain(work.path() / "scene.json", scene.dump(2));
+    std::unique_ptr<Scene> loaded = loadScene((work.path() / "scene.json").string());
+    RenderOptions options;
+    options.threads = job.threads;
+    options.quiet = job.quiet;
+    RenderStats stats;
+    Film film = renderScene(*loaded, options, stats);
+
+    // The outputs, all through the command's transaction.
+    fs::create_directories(out / "parts");
+    for (size_t i = 0; i < parts.size(); ++i) {
+        const std::string path = (out / "parts" / files[i]).string();
+        writeTextAtomically(path, objText(parts[i].mesh), "part mesh");
+        report.written.push_back(path);
+    }
+    if (job.skeleton.empty()) {
+        writeTextAtomically(finalSkeleton, kStraightTrunk, "skeleton");
+        report.written.push_back(finalSkeleton);
+    }
+    for (auto& m : scene["materials"])
+        if (m.contains("skeleton")) m["skeleton"] = finalSkeleton;
+    const nlohmann::json partsJson = {{"model", fs::absolute(job.model).string()},
+                                      {"unit", job.unit},
+                                      {"skeleton", finalSkeleton},
+                                      {"grain", job.grain},
+                                      {"seed", job.seed},
+                                      {"parts", planJson(plan)}};
+    const std::string partsPath = (out / "parts.json").string();
+    const std::string scenePath = (out / "scene.json").string();
+    const std::string previewPath = (out / "preview.png").string();
+    writeTextAtomically(partsPath, partsJson.dump(2) + "\n", "parts plan");
+    writeTextAtomically(scenePath, scene.dump(2) + "\n", "scene");
+    writePreviewPng(previewPath, film.rgb, film.width, film.height);
+    report.written.insert(report.written.end(), {partsPath, scenePath, previewPath});
+    report.parts = plan.size();
+    for (const PartPlan& p : plan) {
+        report.woodParts += p.wood;
+        for (const std::string& n : p.notes) report.warnings.push_back(p.name + ": " + n);
+    }
+    return report;
+}
+
+}  // namespace nenrin
