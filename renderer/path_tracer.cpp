@@ -255,7 +255,7 @@ void TileRenderer::locateBoards() {
         path.material = object.material;
         path.worldFromObject = &object.worldFromObject;
         path.lamella = -1;
-        path.boardTint = {1, 1, 1};
+        path.boardTint = object.boardTint;
         path.treeFromObject = &object.treeFromObject;
         path.glue = nullptr;
         if (object.layout) {

@@ -92,6 +92,9 @@ struct SceneObject {
     /// Wood: laminated products map each lamella on its own; other objects use treeFromObject.
     std::shared_ptr<const LaminatedLayout> layout;
     RigidTransform treeFromObject;
+    /// Solid wood: the board's tree, a filter on the albedo (scene `log.tint`; lamellae have
+    /// their own).
+    Rgb boardTint{1, 1, 1};
 };
 
 struct Scene {

@@ -264,7 +264,7 @@ void cutLamellae(LaminatedLayout& layout, const GrowthField& field, const CutPla
 
 /// Where solid (not laminated) wood sits in the tree: by default the object's +y (up in the
 /// scene) runs along the trunk (+z in tree space), its origin on the pith at height 1 m.
-RigidTransform readLogPlacement(JsonReader& parent) {
+RigidTransform readLogPlacement(JsonReader& parent, Rgb& boardTint) {
     RigidTransform treeFromObject =
         RigidTransform::fromAxes({1, 0, 0}, {0, 0, 1}, {0, -1, 0}, {0, 0, 1});
     auto r = parent.object("log");
@@ -272,6 +272,12 @@ RigidTransform readLogPlacement(JsonReader& parent) {
     const bool hasPosition = r->has("position");
     RigidTransform place = placement(*r);
     if (!hasPosition) place.origin = {0, 0, 1};
+    if (r->has("tint")) {
+        const Vec3 t = r->vec3("tint", {1, 1, 1});
+        if (!(t.x >= 0 && t.y >= 0 && t.z >= 0 && t.x <= 2 && t.y <= 2 && t.z <= 2))
+            throw r->error("tint", "expected three factors in [0, 2]");
+        boardTint = {t.x, t.y, t.z};
+    }
     r->finish();
     // "position" is in tree space, "rotate" turns the object before it is placed.
     RigidTransform rotateObject = place;
@@ -422,7 +428,7 @@ SceneObject readObject(JsonReader& r, Scene& scene,
 
     if (o.type == "box" || o.type == "mesh") {
         readPlainShape(r, scene, o);
-        if (wood) o.treeFromObject = readLogPlacement(r);
+        if (wood) o.treeFromObject = readLogPlacement(r, o.boardTint);
     } else if (o.type == "log_slice") {
         if (!wood) throw r.error("material", "a log slice needs a wood material");
         readLogSlice(r, material.wood->field(), o);

@@ -135,7 +135,8 @@ nlohmann::json planJson(const std::vector<PartPlan>& plan) {
                               {"azimuth_degrees", b.azimuth * 180 / std::numbers::pi},
                               {"offset", b.offset},
                               {"width", p.boardWidth},
-                              {"quarter_sawn", b.quarterSawn}};
+                              {"quarter_sawn", b.quarterSawn},
+                              {"tint", {b.tint.r, b.tint.g, b.tint.b}}};
                 const RigidTransform& t = p.treeFromModel;
                 j["tree_from_model"] = {
                     {"x", vec(t.x)}, {"y", vec(t.y)}, {"z", vec(t.z)}, {"origin", vec(t.origin)}};

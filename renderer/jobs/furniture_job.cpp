@@ -89,8 +89,10 @@ nlohmann::json sceneJson(const std::vector<PartPlan>& plan, const std::vector<st
         nlohmann::json o = {{"type", "mesh"}, {"name", p.name}, {"file", "parts/" + files[i]}};
         if (p.wood && p.board) {
             o["material"] = woodByGrain[p.grain];
+            const Rgb& t = p.board->tint;
             o["log"] = {{"position", vec(p.treeFromModel.origin)},
-                        {"rotate", vec(logRotateDegrees(p.treeFromModel))}};
+                        {"rotate", vec(logRotateDegrees(p.treeFromModel))},
+                        {"tint", {t.r, t.g, t.b}}};
         } else {
             o["material"] = "not-wood";
         }

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <set>
 
 #include "renderer/furniture/furniture_plan.h"
 #include "renderer/furniture/model_parts.h"
@@ -222,6 +223,7 @@ TEST(FurnitureJob, TheSceneHoldsEveryPartWhereThePlanSays) {
     const nlohmann::json plan = parseJsonFile((out / "parts.json").string());
     const std::unique_ptr<Scene> scene = loadScene((out / "scene.json").string());
     size_t checked = 0;
+    std::set<double> tints;
     for (const SceneObject& o : scene->objects) {
         for (const auto& p : plan["parts"]) {
             if (p["name"] != o.name) continue;
@@ -233,10 +235,16 @@ TEST(FurnitureJob, TheSceneHoldsEveryPartWhereThePlanSays) {
             EXPECT_NEAR(length(t.x - v("x")) + length(t.y - v("y")) + length(t.z - v("z")), 0, 1e-9)
                 << o.name;
             EXPECT_NEAR(length(t.origin - v("origin")), 0, 1e-12) << o.name;
+            // Its board's tree tint, on the object.
+            const auto& tint = p["board"]["tint"];
+            EXPECT_EQ(o.boardTint.r, tint[0].get<double>()) << o.name;
+            EXPECT_EQ(o.boardTint.b, tint[2].get<double>()) << o.name;
+            tints.insert(o.boardTint.r);
             ++checked;
         }
     }
     EXPECT_EQ(checked, 17u);
+    EXPECT_GT(tints.size(), 10u);  // boards from different trees differ
     fs::remove_all(out);
 }
 
