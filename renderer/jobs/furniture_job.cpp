@@ -13,8 +13,10 @@
 #include "renderer/colour_management.h"
 #include "renderer/furniture/furniture_plan.h"
 #include "renderer/furniture/model_parts.h"
+#include "renderer/furniture/part_charts.h"
 #include "renderer/path_tracer.h"
 #include "renderer/scene_file.h"
+#include "renderer/texture_set/uv_raster.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
 
@@ -28,6 +30,18 @@ namespace {
 constexpr const char* kStraightTrunk =
     "{\n  \"description\": \"nenrin furniture's default log: a straight trunk, 10 m tall\",\n"
     "  \"elongation_speed\": 0.5,\n  \"trunk\": { \"points\": [[0, 0, 0], [0, 0, 10]] }\n}\n";
+
+/// Gutter between a part's own charts, in uv units: 4 texels of a 1024 map.
+constexpr double kChartGutter = 4.0 / 1024;
+
+/// A part's own uvs can be baked on when every triangle has them, inside the unit square, with
+/// area, and no two triangles share a texel of a 256 x 256 raster.
+bool ownUvsUsable(const TriangleMesh& m) {
+    if (m.uvs.empty()) return false;
+    const UvRaster r = rasterizeUv(m, 256, 256);
+    return r.overlappingTexels == 0 && r.trianglesOutsideUnitSquare == 0 &&
+           r.degenerateTriangles == 0;
+}
 
 /// The diagonal (m) of furniture, from a footstool to a wardrobe: outside it, a warning.
 constexpr double kPlausibleSize[2] = {0.25, 8};
@@ -147,14 +161,6 @@ void writePlain(const fs::path& path, const std::string& text) {
 
 }  // namespace
 
-double metresPerUnit(const std::string& unit) {
-    if (unit == "m") return 1;
-    if (unit == "cm") return 0.01;
-    if (unit == "mm") return 0.001;
-    throw InputError("command line", "--unit",
-                     fmt::format("expected mm, cm or m, found \"{}\"", unit));
-}
-
 Vec3 logRotateDegrees(const RigidTransform& treeFromObject) {
     const RigidTransform standing =
         RigidTransform::fromAxes({1, 0, 0}, {0, 0, 1}, {0, -1, 0}, {0, 0, 0});
@@ -168,8 +174,63 @@ Vec3 logRotateDegrees(const RigidTransform& treeFromObject) {
     return {std::atan2(m.y.z, m.z.z) * deg, std::asin(sb) * deg, std::atan2(m.x.y, m.x.x) * deg};
 }
 
+namespace {
+
+/// The model loaded in metres, its parts, and a warning when its size is implausible.
+struct LoadedModel {
+    TriangleMesh mesh;
+    std::vector<ModelPart> parts;
+    std::string sizeWarning;
+};
+
+LoadedModel loadModel(const FurnitureJob& job) {
+    LoadedModel m;
+    m.mesh = loadFurnitureModel(job.model, metresPerUnit(job.unit));
+    Vec3 lo, hi;
+    meshBounds(m.mesh, lo, hi);
+    const double diagonal = length(hi - lo);
+    if (diagonal < kPlausibleSize[0] || diagonal > kPlausibleSize[1])
+        m.sizeWarning = fmt::format(
+            "the model is {:.3g} m across in --unit {}: implausible for furniture (is the unit "
+            "right? the chair of sweethome3d-furniture is in cm)",
+            diagonal, job.unit);
+    m.parts = splitModelParts(m.mesh, job.model);
+    return m;
+}
+
+/// The cut plan of every part (the log's skeleton already written where `skeleton` says).
+std::vector<PartPlan> planParts(const FurnitureJob& job, const LoadedModel& model,
+                                const std::string& skeleton) {
+    FurniturePlanRequest request;
+    request.grain = job.grain;
+    request.skeleton = skeleton;
+    request.cut.seed = static_cast<uint64_t>(job.seed);
+    request.cut.sawing = job.sawing == "flat"      ? Sawing::Flat
+                         : job.sawing == "quarter" ? Sawing::Quarter
+                                                   : Sawing::Mixed;
+    if (!job.plan.empty()) request.choices = readPlanChoices(job.plan);
+    TreeCache trees;
+    try {
+        return planFurniture(model.parts, request, trees);
+    } catch (const InputError& e) {
+        // A board too big for the log is most often a model in other units: say so.
+        if (model.sizeWarning.empty()) throw;
+        throw InputError(e.file(), e.where(), e.message() + "; " + model.sizeWarning);
+    }
+}
+
+}  // namespace
+
+double metresPerUnit(const std::string& unit) {
+    if (unit == "m") return 1;
+    if (unit == "cm") return 0.01;
+    if (unit == "mm") return 0.001;
+    throw InputError("command line", "--unit",
+                     fmt::format("expected mm, cm or m, found \"{}\"", unit));
+}
+
 FurnitureReport runFurnitureJob(const FurnitureJob& job) {
-    const double scale = metresPerUnit(job.unit);
+    metresPerUnit(job.unit);  // a bad unit fails first
     const fs::path out = job.output;
     if (fs::exists(out) && !fs::is_directory(out))
         throw InputError("command line", "-o", fmt::format("{}: not a folder", job.output));
@@ -177,53 +238,36 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
     const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
     checkOutputPath(((fs::is_directory(out) ? out : parent) / "parts.json").string());
     FurnitureReport report;
+    const LoadedModel model = loadModel(job);
+    if (!model.sizeWarning.empty()) report.warnings.push_back(model.sizeWarning);
+    const std::vector<ModelPart>& parts = model.parts;
 
-    TriangleMesh model = loadFurnitureModel(job.model, scale);
-    Vec3 lo, hi;
-    meshBounds(model, lo, hi);
-    const double diagonal = length(hi - lo);
-    std::string sizeWarning;
-    if (diagonal < kPlausibleSize[0] || diagonal > kPlausibleSize[1])
-        sizeWarning = fmt::format(
-            "the model is {:.3g} m across in --unit {}: implausible for furniture (is the unit "
-            "right? the chair of sweethome3d-furniture is in cm)",
-            diagonal, job.unit);
-    if (!sizeWarning.empty()) report.warnings.push_back(sizeWarning);
-    const std::vector<ModelPart> parts = splitModelParts(model, job.model);
-
-    FurniturePlanRequest request;
-    request.grain = job.grain;
-    request.cut.seed = static_cast<uint64_t>(job.seed);
-    request.cut.sawing = job.sawing == "flat"      ? Sawing::Flat
-                         : job.sawing == "quarter" ? Sawing::Quarter
-                                                   : Sawing::Mixed;
-    if (!job.plan.empty()) request.choices = readPlanChoices(job.plan);
     WorkFolder work;
     std::string skeleton = job.skeleton;
     if (skeleton.empty()) {
         writePlain(work.path() / "skeleton.json", kStraightTrunk);
         skeleton = (work.path() / "skeleton.json").string();
     }
-    request.skeleton = skeleton;
-    TreeCache trees;
-    std::vector<PartPlan> plan;
-    try {
-        plan = planFurniture(parts, request, trees);
-    } catch (const InputError& e) {
-        // A board too big for the log is most often a model in other units: say so.
-        if (sizeWarning.empty()) throw;
-        throw InputError(e.file(), e.where(), e.message() + "; " + sizeWarning);
-    }
+    const std::vector<PartPlan> plan = planParts(job, model, skeleton);
 
+    // The parts with uvs a texture set can be baked on: the model's own where they are
+    // usable, else charts of their own.
+    std::vector<TriangleMesh> meshes;
+    std::vector<bool> charted;
+    for (size_t i = 0; i < parts.size(); ++i) {
+        charted.push_back(!ownUvsUsable(parts[i].mesh));
+        meshes.push_back(charted.back() ? chartPart(parts[i].mesh, plan[i].frame, kChartGutter).mesh
+                                        : parts[i].mesh);
+    }
     // The parts and the scene, first in the work folder for the preview render.
     std::vector<std::string> files;
     for (size_t i = 0; i < parts.size(); ++i) files.push_back(fileName(i, parts[i].name));
     const std::string finalSkeleton = job.skeleton.empty()
                                           ? (fs::absolute(out) / "skeleton.json").string()
                                           : fs::absolute(job.skeleton).string();
-    nlohmann::json scene = sceneJson(plan, files, fs::absolute(skeleton).string(), model, job);
+    nlohmann::json scene = sceneJson(plan, files, fs::absolute(skeleton).string(), model.mesh, job);
     for (size_t i = 0; i < parts.size(); ++i)
-        writePlain(work.path() / "parts" / files[i], objText(parts[i].mesh));
+        writePlain(work.path() / "parts" / files[i], objText(meshes[i]));
     writePlain(work.path() / "scene.json", scene.dump(2));
     std::unique_ptr<Scene> loaded = loadScene((work.path() / "scene.json").string());
     RenderOptions options;
@@ -236,7 +280,7 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
     fs::create_directories(out / "parts");
     for (size_t i = 0; i < parts.size(); ++i) {
         const std::string path = (out / "parts" / files[i]).string();
-        writeTextAtomically(path, objText(parts[i].mesh), "part mesh");
+        writeTextAtomically(path, objText(meshes[i]), "part mesh");
         report.written.push_back(path);
     }
     if (job.skeleton.empty()) {
@@ -245,12 +289,17 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
     }
     for (auto& m : scene["materials"])
         if (m.contains("skeleton")) m["skeleton"] = finalSkeleton;
+    nlohmann::json planned = planJson(plan);
+    for (size_t i = 0; i < parts.size(); ++i) {
+        planned[i]["file"] = "parts/" + files[i];
+        planned[i]["uvs"] = charted[i] ? "charts" : "model";
+    }
     const nlohmann::json partsJson = {{"model", fs::absolute(job.model).string()},
                                       {"unit", job.unit},
                                       {"skeleton", finalSkeleton},
                                       {"grain", job.grain},
                                       {"seed", job.seed},
-                                      {"parts", planJson(plan)}};
+                                      {"parts", planned}};
     const std::string partsPath = (out / "parts.json").string();
     const std::string scenePath = (out / "scene.json").string();
     const std::string previewPath = (out / "preview.png").string();

@@ -120,11 +120,13 @@ TileTexels gatherTexels(const BakeSurface& surface, const UvMaps& maps, int x0, 
 
 /// The shaded wood of a tile's texels into the maps (normal and fibre in tangent space).
 void storeTexels(const TileTexels& tile, const std::vector<WoodSurfaceSample>& samples,
-                 const RigidTransform& objectFromTree, UvMaps& maps) {
+                 const RigidTransform& objectFromTree, const Rgb& boardTint, UvMaps& maps) {
     for (size_t k = 0; k < tile.texels.size(); ++k) {
         size_t i = tile.texels[k];
         const WoodSurfaceSample& s = samples[k];
-        Rgb albedo = s.coverage > 0 || !(s.albedo == Rgb{}) ? s.albedo : kBarkAlbedo;
+        // The board's tree tints the albedo, as the renderer does.
+        const Rgb albedo =
+            multiply(s.coverage > 0 || !(s.albedo == Rgb{}) ? s.albedo : kBarkAlbedo, boardTint);
         maps.baseColour[3 * i] = float(albedo.r);
         maps.baseColour[3 * i + 1] = float(albedo.g);
         maps.baseColour[3 * i + 2] = float(albedo.b);
@@ -212,7 +214,7 @@ UvMaps bakeUvMaps(const Scene& scene, const SceneObject& object, const UvBakeOpt
         std::vector<WoodSurfaceSample> samples(texels.points.size());
         WoodScratch scratch;
         shader.evaluateSurface(texels.points, texels.footprints, samples, scratch);
-        storeTexels(texels, samples, objectFromTree, maps);
+        storeTexels(texels, samples, objectFromTree, object.boardTint, maps);
         progress.advance();
     });
     progress.done();

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,16 +13,18 @@
 
 #include "renderer/furniture/furniture_plan.h"
 #include "renderer/furniture/model_parts.h"
+#include "renderer/furniture/part_charts.h"
 #include "renderer/furniture/part_frame.h"
 #include "renderer/jobs/furniture_job.h"
 #include "renderer/scene_file.h"
+#include "renderer/texture_set/uv_raster.h"
 #include "util/json_parse.h"
 
 namespace nenrin {
 namespace {
 
-/// Appends a closed box (12 triangles) of `size`, turned by `turn`, centred at `centre`, in
-/// group `group`.
+/// Appends a closed box (12 triangles) of `size`, turned and placed by `turn`, in group
+/// `group`.
 void addBox(TriangleMesh& m, const Vec3& size, const RigidTransform& turn, uint32_t group) {
     const uint32_t first = static_cast<uint32_t>(m.positions.size());
     for (int i = 0; i < 8; ++i)
@@ -30,9 +33,16 @@ void addBox(TriangleMesh& m, const Vec3& size, const RigidTransform& turn, uint3
                         (i & 4 ? 0.5 : -0.5) * size.z}));
     const int quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
                              {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+    // Wound counter-clockwise seen from outside (normals outward), as a closed model is.
+    auto outward = [&](std::array<uint32_t, 3> t) {
+        const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+        if (dot(cross(b - a, c - a), (a + b + c) * (1.0 / 3) - turn.origin) < 0)
+            std::swap(t[1], t[2]);
+        return t;
+    };
     for (const auto& q : quads) {
-        m.triangles.push_back({first + q[0], first + q[1], first + q[2]});
-        m.triangles.push_back({first + q[0], first + q[2], first + q[3]});
+        m.triangles.push_back(outward({first + q[0], first + q[1], first + q[2]}));
+        m.triangles.push_back(outward({first + q[0], first + q[2], first + q[3]}));
         m.triangleGroups.push_back(group);
         m.triangleGroups.push_back(group);
         m.triangleMaterials.push_back(0);
@@ -135,6 +145,55 @@ TEST(FurnitureParts, LogAnglesGiveBackTheTransform) {
         EXPECT_NEAR(length(back.x - r.x) + length(back.y - r.y) + length(back.z - r.z), 0, 1e-9)
             << k;
     }
+}
+
+// Charts for a part without usable uvs: a rail (box) turned in space gets one chart per
+// face, packed inside the unit square without overlap, at one scale (uv area = surface area /
+// side^2), every chart the surface's way round, u along the fibre on the long faces.
+TEST(FurnitureParts, ChartsCoverThePartOnceAtOneScale) {
+    TriangleMesh m = emptyModel();
+    RigidTransform turn = RigidTransform::rotation(normalize(Vec3{1, 2, 3}), 0.7);
+    turn.origin = {0.1, 0.4, -0.2};
+    addBox(m, {0.6, 0.08, 0.03}, turn, 0);
+    const PartFrame frame = partFrame(m);
+    const double gutter = 4.0 / 1024;
+    const PartCharts c = chartPart(m, frame, gutter);
+    EXPECT_EQ(c.charts, 6);
+    ASSERT_EQ(c.mesh.triangles.size(), 12u);
+    ASSERT_EQ(c.mesh.uvs.size(), c.mesh.positions.size());
+    const Vec3 centre = turn.origin;
+    double uvArea = 0;
+    for (const auto& t : c.mesh.triangles) {
+        const auto& a = c.mesh.uvs[t[0]];
+        const auto& b = c.mesh.uvs[t[1]];
+        const auto& d = c.mesh.uvs[t[2]];
+        const double signedUv =
+            0.5 * ((b[0] - a[0]) * (d[1] - a[1]) - (d[0] - a[0]) * (b[1] - a[1]));
+        const Vec3 p0 = c.mesh.positions[t[0]], p1 = c.mesh.positions[t[1]],
+                   p2 = c.mesh.positions[t[2]];
+        const Vec3 e = cross(p1 - p0, p2 - p0);
+        // The same way round in uv as seen from outside.
+        const double outward = dot(e, (p0 + p1 + p2) * (1.0 / 3) - centre);
+        EXPECT_GT(signedUv * outward, 0);
+        EXPECT_NEAR(std::abs(signedUv) * c.metresPerUv * c.metresPerUv, 0.5 * length(e), 1e-12);
+        uvArea += std::abs(signedUv);
+        for (const auto* uv : {&a, &b, &d})
+            for (double x : *uv) {
+                EXPECT_GE(x, gutter * 0.999);
+                EXPECT_LE(x, 1 - gutter * 0.999);
+            }
+        // On the long faces (normal across the fibre) u runs along the fibre.
+        const Vec3 n = normalize(e);
+        if (std::abs(dot(n, frame.axes[0])) < 0.5 && std::abs(b[0] - a[0]) > 1e-9) {
+            const double du = b[0] - a[0];
+            EXPECT_NEAR(std::abs(dot(p1 - p0, frame.axes[0])), std::abs(du) * c.metresPerUv, 1e-9);
+        }
+    }
+    // Six faces' rectangles inside the square, none overlapping: their total area is the
+    // surface's and below the square's.
+    EXPECT_NEAR(uvArea * c.metresPerUv * c.metresPerUv, 2 * (0.6 * 0.08 + 0.6 * 0.03 + 0.08 * 0.03),
+                1e-9);
+    EXPECT_LT(uvArea, 1);
 }
 
 std::string base64(const std::string& bytes) {
@@ -245,6 +304,17 @@ TEST(FurnitureJob, TheSceneHoldsEveryPartWhereThePlanSays) {
     }
     EXPECT_EQ(checked, 17u);
     EXPECT_GT(tints.size(), 10u);  // boards from different trees differ
+    // The chair's own uvs are degenerate (a face's corners share one vt): every part got
+    // charts of its own, which cover it once (no texel claimed twice, none degenerate).
+    for (const auto& p : plan["parts"]) {
+        EXPECT_EQ(p["uvs"], "charts") << p["name"];
+        const TriangleMesh part = loadObjMesh((out / p["file"].get<std::string>()).string());
+        const UvRaster r = rasterizeUv(part, 512, 512);
+        EXPECT_EQ(r.overlappingTexels, 0u) << p["name"];
+        EXPECT_EQ(r.trianglesOutsideUnitSquare, 0u) << p["name"];
+        const std::vector<uint8_t> covered = r.covered();
+        EXPECT_GT(std::count(covered.begin(), covered.end(), 1), 512 * 512 / 20) << p["name"];
+    }
     fs::remove_all(out);
 }
 
