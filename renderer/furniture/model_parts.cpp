@@ -3,61 +3,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <unordered_map>
 
+#include "renderer/furniture/welded_vertices.h"
 #include "renderer/geometry/gltf_mesh.h"
 #include "util/input_error.h"
 
 namespace nenrin {
 
 namespace {
-
-/// Union-find over triangles.
-class Pieces {
-public:
-    explicit Pieces(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-    size_t find(size_t i) {
-        while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-        return i;
-    }
-    void join(size_t a, size_t b) {
-        a = find(a), b = find(b);
-        if (a != b) parent_[std::max(a, b)] = std::min(a, b);  // the first triangle leads
-    }
-
-private:
-    std::vector<size_t> parent_;
-};
-
-struct PositionKey {
-    uint64_t x, y, z;
-    bool operator==(const PositionKey&) const = default;
-};
-struct PositionHash {
-    size_t operator()(const PositionKey& k) const {
-        return std::hash<uint64_t>()(k.x * 0x9E3779B97F4A7C15ull ^ k.y * 0xC2B2AE3D27D4EB4Full ^
-                                     k.z);
-    }
-};
-
-/// Welded vertex ids: vertices at exactly the same position (split at uv or normal seams by
-/// the loaders) are one.
-std::vector<uint32_t> weld(const TriangleMesh& m) {
-    std::unordered_map<PositionKey, uint32_t, PositionHash> ids;
-    std::vector<uint32_t> welded(m.positions.size());
-    for (size_t i = 0; i < m.positions.size(); ++i) {
-        const Vec3& p = m.positions[i];
-        // +0.0 and -0.0 are one position.
-        PositionKey key{std::bit_cast<uint64_t>(p.x + 0.0), std::bit_cast<uint64_t>(p.y + 0.0),
-                        std::bit_cast<uint64_t>(p.z + 0.0)};
-        welded[i] = ids.try_emplace(key, static_cast<uint32_t>(ids.size())).first->second;
-    }
-    return welded;
-}
 
 double triangleArea(const TriangleMesh& m, const std::array<uint32_t, 3>& t) {
     return 0.5 * length(cross(m.positions[t[1]] - m.positions[t[0]],
@@ -99,12 +55,12 @@ ModelPart extract(const TriangleMesh& model, const std::vector<size_t>& triangle
 
 std::vector<ModelPart> splitModelParts(const TriangleMesh& model, const std::string& file) {
     const size_t n = model.triangles.size();
-    const std::vector<uint32_t> welded = weld(model);
+    const std::vector<uint32_t> welded = weldedVertexIds(model);
     auto groupOf = [&](size_t t) {
         return model.triangleGroups.empty() ? 0u : model.triangleGroups[t];
     };
     // Triangles of one group sharing a welded vertex are one piece.
-    Pieces pieces(n);
+    DisjointSets pieces(n);
     std::unordered_map<uint64_t, size_t> firstAt;  // (group, welded vertex) -> a triangle
     for (size_t t = 0; t < n; ++t)
         for (uint32_t v : model.triangles[t]) {

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <unordered_map>
+
+#include "renderer/furniture/welded_vertices.h"
 
 namespace nenrin {
 
@@ -30,36 +30,6 @@ int projectionOf(const Vec3& n, const PartFrame& f) {
         if (std::abs(d) > bestDot) bestDot = std::abs(d), best = 2 * k + (d < 0 ? 1 : 0);
     }
     return best;
-}
-
-class UnionFind {
-public:
-    explicit UnionFind(size_t n) : p_(n) { std::iota(p_.begin(), p_.end(), 0); }
-    size_t find(size_t i) {
-        while (p_[i] != i) i = p_[i] = p_[p_[i]];
-        return i;
-    }
-    void join(size_t a, size_t b) {
-        a = find(a), b = find(b);
-        if (a != b) p_[std::max(a, b)] = std::min(a, b);
-    }
-
-private:
-    std::vector<size_t> p_;
-};
-
-/// Vertex ids that treat equal positions as one (the loaders split vertices at seams).
-std::vector<uint32_t> weldedIds(const TriangleMesh& m) {
-    std::map<std::array<uint64_t, 3>, uint32_t> ids;
-    std::vector<uint32_t> out(m.positions.size());
-    for (size_t i = 0; i < m.positions.size(); ++i) {
-        const Vec3& p = m.positions[i];
-        const std::array<uint64_t, 3> key{std::bit_cast<uint64_t>(p.x + 0.0),
-                                          std::bit_cast<uint64_t>(p.y + 0.0),
-                                          std::bit_cast<uint64_t>(p.z + 0.0)};
-        out[i] = ids.try_emplace(key, static_cast<uint32_t>(ids.size())).first->second;
-    }
-    return out;
 }
 
 struct Chart {
@@ -96,8 +66,8 @@ PartCharts chartPart(const TriangleMesh& part, const PartFrame& frame, double gu
         label[t] = projectionOf(lengthSquared(e) > 0 ? normalize(e) : frame.axes[2], frame);
     }
     // Charts: triangles of one projection sharing an edge.
-    const std::vector<uint32_t> welded = weldedIds(part);
-    UnionFind charts(n);
+    const std::vector<uint32_t> welded = weldedVertexIds(part);
+    DisjointSets charts(n);
     std::unordered_map<uint64_t, size_t> edgeOwner;
     for (size_t t = 0; t < n; ++t)
         for (int c = 0; c < 3; ++c) {
