@@ -17,7 +17,8 @@ void addFurnitureCommand(CLI::App& app) {
         "each one's connected pieces), every wood part its own board from the log with its fibre\n"
         "along the part's longest axis. Writes DIR/parts.json (the plan: edit it and pass it back\n"
         "with --plan), DIR/parts/*.obj (in metres), DIR/scene.json (a nenrin scene of the model,\n"
-        "camera framing it) and DIR/preview.png rendered from it (docs/furniture.md).");
+        "camera framing it), DIR/preview.png rendered from it and DIR/textures/PART/ (each wood\n"
+        "part's texture set, glTF with PNG maps, baked on its uvs) (docs/furniture.md).");
     cmd->add_option("model", job->model, "The model: Wavefront OBJ or glTF 2.0 (.gltf, .glb)")
         ->required();
     cmd->add_option("--grain", job->grain, "Grain file of the wood (a species preset)")->required();
@@ -35,7 +36,12 @@ void addFurnitureCommand(CLI::App& app) {
         ->default_val("mixed");
     cmd->add_option("--seed", job->seed, "Cut plan seed: another seed, other boards")
         ->default_val(1);
-    cmd->add_option("--res", job->previewWidth, "Width of preview.png in pixels (height 3/4)")
+    cmd->add_option("--res", job->textureSize,
+                    "Texels (width and height) of each wood part's texture set, DIR/textures/; "
+                    "0 = none")
+        ->check(CLI::Range(0, 8192))
+        ->default_val(1024);
+    cmd->add_option("--preview", job->previewWidth, "Width of preview.png in pixels (height 3/4)")
         ->check(CLI::Range(16, 8192))
         ->default_val(640);
     cmd->add_option("--threads", job->threads, "Worker threads (0 = all cores)")

@@ -16,6 +16,8 @@
 #include "renderer/furniture/part_charts.h"
 #include "renderer/path_tracer.h"
 #include "renderer/scene_file.h"
+#include "renderer/texture_set/gltf_texture_set.h"
+#include "renderer/texture_set/uv_bake.h"
 #include "renderer/texture_set/uv_raster.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
@@ -219,6 +221,23 @@ std::vector<PartPlan> planParts(const FurnitureJob& job, const LoadedModel& mode
     }
 }
 
+/// Bakes part `index` of the work folder's scene onto its uvs and writes its texture set
+/// (glTF with PNG maps, docs/uv-bake.md) into `folder`.
+std::vector<std::string> writePartTextures(const Scene& scene, size_t index,
+                                           const std::string& folder, const std::string& finalScene,
+                                           const FurnitureJob& job) {
+    const SceneObject& object = scene.objects[index];
+    UvBakeOptions options;
+    options.width = options.height = job.textureSize;
+    options.threads = job.threads;
+    options.quiet = true;
+    const UvMaps maps = bakeUvMaps(scene, object, options);
+    fs::create_directories(folder);
+    const std::map<std::string, std::string> metadata{
+        {"version", NENRIN_VERSION}, {"scene", finalScene}, {"object", object.name}};
+    return writeGltfTextureSet(maps, object, folder, metadata);
+}
+
 }  // namespace
 
 double metresPerUnit(const std::string& unit) {
@@ -294,6 +313,14 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
         planned[i]["file"] = "parts/" + files[i];
         planned[i]["uvs"] = charted[i] ? "charts" : "model";
     }
+    for (size_t i = 0; i < parts.size(); ++i)
+        if (plan[i].wood && job.textureSize > 0) {
+            const std::string folder = (out / "textures" / fs::path(files[i]).stem()).string();
+            planned[i]["textures"] = "textures/" + fs::path(files[i]).stem().string();
+            for (const std::string& f :
+                 writePartTextures(*loaded, i, folder, (out / "scene.json").string(), job))
+                report.written.push_back(f);
+        }
     const nlohmann::json partsJson = {{"model", fs::absolute(job.model).string()},
                                       {"unit", job.unit},
                                       {"skeleton", finalSkeleton},

@@ -2,7 +2,8 @@
 /// `nenrin furniture` as a job: a model (OBJ or glTF) cut into parts, every wood part its own
 /// board from the log (renderer/furniture), written as parts.json (the plan, editable and read
 /// back with --plan), the parts as OBJ files in metres, scene.json (the model in solid wood, a
-/// camera framing it) and preview.png rendered from it. All outputs or none.
+/// camera framing it), preview.png rendered from it, and every wood part's texture set (glTF
+/// with PNG maps, baked on its uvs). All outputs or none.
 
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@ struct FurnitureJob {
     std::string plan;  ///< a parts.json to re-do the job with
     std::string sawing = "mixed";
     long long seed = 1;
+    int textureSize = 1024;  ///< texels of each part's texture set; 0 = none
     int previewWidth = 640, previewHeight = 480, previewSpp = 32;
     int threads = 0;
     bool quiet = false;

@@ -21,7 +21,8 @@ protected:
             "furniture", kChair.string(),
             "--grain",   grainScene("species/european-oak.json").string(),
             "--unit",    "cm",
-            "--res",     "64",
+            "--res",     "32",
+            "--preview", "64",
             "-q",        "--threads",
             "2"};
         args.insert(args.end(), extra.begin(), extra.end());
@@ -99,6 +100,14 @@ TEST_F(FurnitureCliTest, EveryPieceOfTheChairIsItsOwnBoard) {
     EXPECT_EQ(places.size(), 17u);  // no two boards from one place in the log
     for (const char* f : {"scene.json", "preview.png", "skeleton.json"})
         EXPECT_TRUE(fs::exists(out_ / "chair" / f)) << f;
+    // Every wood part its texture set (the glTF validator checks them: ctest gltf_validator).
+    for (const auto& p : parts) {
+        const fs::path set = out_ / "chair" / p["textures"].get<std::string>();
+        EXPECT_TRUE(fs::exists(set / "basecolor.png")) << set;
+        auto base = readImage(set / "basecolor.png");
+        ASSERT_TRUE(base);
+        EXPECT_EQ(base->spec.width, 32);
+    }
     auto preview = readImage(out_ / "chair/preview.png");
     ASSERT_TRUE(preview);
     EXPECT_EQ(preview->spec.width, 64);
@@ -148,8 +157,8 @@ TEST_F(FurnitureCliTest, BadModelsAreRefusedAndLeaveNothing) {
 TEST_F(FurnitureCliTest, AModelOfImplausibleSizeIsWarnedAbout) {
     auto with = [&](const std::string& unit, const std::string& folder) {
         return run({"furniture", kChair.string(), "--grain",
-                    grainScene("species/european-oak.json").string(), "--unit", unit, "--res", "32",
-                    "-q", "-o", (out_ / folder).string()});
+                    grainScene("species/european-oak.json").string(), "--unit", unit, "--res", "0",
+                    "--preview", "32", "-q", "-o", (out_ / folder).string()});
     };
     // The chair is in centimetres. Read as millimetres it is 15 cm across: said, and done.
     auto small = with("mm", "small");

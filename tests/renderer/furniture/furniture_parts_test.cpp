@@ -277,6 +277,7 @@ TEST(FurnitureJob, TheSceneHoldsEveryPartWhereThePlanSays) {
     job.output = out.string();
     job.unit = "cm";
     job.previewWidth = 32, job.previewHeight = 24, job.previewSpp = 1;
+    job.textureSize = 0;
     job.quiet = true;
     runFurnitureJob(job);
     const nlohmann::json plan = parseJsonFile((out / "parts.json").string());

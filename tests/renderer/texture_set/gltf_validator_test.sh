@@ -3,7 +3,7 @@
 # gltf-validator, installed into tests/node by scripts/install-deps) with zero errors and zero
 # warnings: the UV-test cube (six charts, a matte finish), the table top (oiled), a bare-finish
 # piece (no coat, no anisotropy: the extensions left out), and a bake whose input mesh is itself
-# a glTF (.glb). Usage: gltf_validator_test.sh NENRIN SOURCE_DIR (ctest label gltf).
+# a glTF (.glb), and the seventeen part sets of `nenrin furniture`'s oak chair. Usage: gltf_validator_test.sh NENRIN SOURCE_DIR (ctest label gltf).
 set -euo pipefail
 nenrin="$1"
 src="$2"
@@ -54,4 +54,11 @@ sed -e "s#\"file\": \"../meshes/uv-cube.obj\", \"scale\": 0.5#\"file\": \"$work/
 grep -q "cube.glb" "$work/from-glb.json"
 bake "$work/from-glb.json" cube "$work/from-glb"
 check "$work/from-glb/cube.gltf" "$work/from-glb/cube.glb"
+# nenrin furniture: every wood part's texture set of the oak chair (charts of its own).
+"$nenrin" furniture "$src/tests/data/furniture/oak-chair/oakChair.obj" --unit cm \
+  --grain "$src/scenes/grain/species/european-oak.json" --res 64 --preview 32 -q \
+  -o "$work/chair" > /dev/null
+sets=("$work"/chair/textures/*/*.glb)
+[[ ${#sets[@]} -eq 17 ]] || { echo "FAIL: ${#sets[@]} chair part sets, expected 17"; exit 1; }
+check "${sets[@]}"
 echo "PASS"
