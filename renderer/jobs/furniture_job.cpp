@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -268,6 +270,13 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
         skeleton = (work.path() / "skeleton.json").string();
     }
     const std::vector<PartPlan> plan = planParts(job, model, skeleton);
+    if (!job.plan.empty())
+        for (const auto& [name, choice] : readPlanChoices(job.plan))
+            if (std::none_of(parts.begin(), parts.end(),
+                             [&](const ModelPart& p) { return p.name == name; }))
+                report.warnings.push_back(
+                    fmt::format("{}: part \"{}\" is not in the model: its choices were not used",
+                                job.plan, name));
 
     // The parts with uvs a texture set can be baked on: the model's own where they are
     // usable, else charts of their own.

@@ -120,9 +120,11 @@ TEST_F(FurnitureCliTest, ThePlanEditedIsFollowed) {
     plan["parts"][9]["wood"] = false;
     plan["parts"][5]["fibre"] = {1, 0, 0};
     plan["parts"][6]["seed"] = 1234;
+    plan["parts"].push_back({{"name", "cushion"}, {"wood", false}});  // not in the model
     std::ofstream(out_ / "plan.json") << plan.dump(1);
     auto r = furniture({"-o", (out_ / "b").string(), "--plan", (out_ / "plan.json").string()});
     ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("part \"cushion\" is not in the model"), std::string::npos) << r.err;
     const nlohmann::json again = json(out_ / "b/parts.json");
     EXPECT_FALSE(again["parts"][9]["wood"].get<bool>());
     EXPECT_NEAR(std::abs(again["parts"][5]["fibre"][0].get<double>()), 1, 1e-12);
