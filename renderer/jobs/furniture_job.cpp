@@ -204,7 +204,8 @@ LoadedModel loadModel(const FurnitureJob& job) {
 
 /// The cut plan of every part (the log's skeleton already written where `skeleton` says).
 std::vector<PartPlan> planParts(const FurnitureJob& job, const LoadedModel& model,
-                                const std::string& skeleton) {
+                                const std::string& skeleton,
+                                const std::map<std::string, PartChoice>& choices) {
     FurniturePlanRequest request;
     request.grain = job.grain;
     request.skeleton = skeleton;
@@ -212,7 +213,7 @@ std::vector<PartPlan> planParts(const FurnitureJob& job, const LoadedModel& mode
     request.cut.sawing = job.sawing == "flat"      ? Sawing::Flat
                          : job.sawing == "quarter" ? Sawing::Quarter
                                                    : Sawing::Mixed;
-    if (!job.plan.empty()) request.choices = readPlanChoices(job.plan);
+    request.choices = choices;
     TreeCache trees;
     try {
         return planFurniture(model.parts, request, trees);
@@ -238,6 +239,17 @@ std::vector<std::string> writePartTextures(const Scene& scene, size_t index,
     const std::map<std::string, std::string> metadata{
         {"version", NENRIN_VERSION}, {"scene", finalScene}, {"object", object.name}};
     return writeGltfTextureSet(maps, object, folder, metadata);
+}
+
+/// A plan's entries for parts the model does not have would silently do nothing: say so.
+void warnUnusedChoices(const std::map<std::string, PartChoice>& choices,
+                       const std::vector<ModelPart>& parts, const std::string& planFile,
+                       std::vector<std::string>& warnings) {
+    for (const auto& [name, choice] : choices)
+        if (std::none_of(parts.begin(), parts.end(),
+                         [&](const ModelPart& p) { return p.name == name; }))
+            warnings.push_back(fmt::format(
+                "{}: part \"{}\" is not in the model: its choices were not used", planFile, name));
 }
 
 }  // namespace
@@ -269,14 +281,10 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
         writePlain(work.path() / "skeleton.json", kStraightTrunk);
         skeleton = (work.path() / "skeleton.json").string();
     }
-    const std::vector<PartPlan> plan = planParts(job, model, skeleton);
-    if (!job.plan.empty())
-        for (const auto& [name, choice] : readPlanChoices(job.plan))
-            if (std::none_of(parts.begin(), parts.end(),
-                             [&](const ModelPart& p) { return p.name == name; }))
-                report.warnings.push_back(
-                    fmt::format("{}: part \"{}\" is not in the model: its choices were not used",
-                                job.plan, name));
+    const std::map<std::string, PartChoice> choices =
+        job.plan.empty() ? std::map<std::string, PartChoice>{} : readPlanChoices(job.plan);
+    const std::vector<PartPlan> plan = planParts(job, model, skeleton, choices);
+    warnUnusedChoices(choices, parts, job.plan, report.warnings);
 
     // The parts with uvs a texture set can be baked on: the model's own where they are
     // usable, else charts of their own.
@@ -294,8 +302,11 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
                                           ? (fs::absolute(out) / "skeleton.json").string()
                                           : fs::absolute(job.skeleton).string();
     nlohmann::json scene = sceneJson(plan, files, fs::absolute(skeleton).string(), model.mesh, job);
-    for (size_t i = 0; i < parts.size(); ++i)
-        writePlain(work.path() / "parts" / files[i], objText(meshes[i]));
+    std::vector<std::string> objTexts;
+    for (size_t i = 0; i < parts.size(); ++i) {
+        objTexts.push_back(objText(meshes[i]));
+        writePlain(work.path() / "parts" / files[i], objTexts[i]);
+    }
     writePlain(work.path() / "scene.json", scene.dump(2));
     std::unique_ptr<Scene> loaded = loadScene((work.path() / "scene.json").string());
     RenderOptions options;
@@ -308,7 +319,7 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
     fs::create_directories(out / "parts");
     for (size_t i = 0; i < parts.size(); ++i) {
         const std::string path = (out / "parts" / files[i]).string();
-        writeTextAtomically(path, objText(meshes[i]), "part mesh");
+        writeTextAtomically(path, objTexts[i], "part mesh");
         report.written.push_back(path);
     }
     if (job.skeleton.empty()) {
