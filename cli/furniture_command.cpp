@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "renderer/jobs/furniture_job.h"
+#include "util/input_error.h"
 
 namespace nenrin {
 
@@ -31,6 +32,9 @@ void addFurnitureCommand(CLI::App& app) {
     cmd->add_option("--plan", job->plan,
                     "A parts.json of an earlier run, edited: per part wood (true/false), grain, "
                     "fibre, requested_sawing (flat, quarter, mixed) and seed are taken from it");
+    cmd->add_option("--grain-for", job->grainFor,
+                    "MATERIAL=G.json: parts of that material (the model's material name, "
+                    "parts.json's `material`) cut from that grain file; repeat for several");
     cmd->add_option("--sawing", job->sawing, "Wide faces flat-, quarter-sawn or mixed")
         ->check(CLI::IsMember({"flat", "quarter", "mixed"}))
         ->default_val("mixed");
@@ -50,6 +54,13 @@ void addFurnitureCommand(CLI::App& app) {
     cmd->add_flag("-q,--quiet", job->quiet, "No progress bar");
     cmd->callback([job] {
         job->previewHeight = std::max(12, job->previewWidth * 3 / 4);
+        for (const std::string& pair : job->grainFor) {
+            const size_t eq = pair.find('=');
+            if (eq == 0 || eq == std::string::npos || eq + 1 == pair.size())
+                throw InputError("command line", "--grain-for",
+                                 fmt::format("expected MATERIAL=GRAIN.json, found \"{}\"", pair));
+            job->grainByMaterial[pair.substr(0, eq)] = pair.substr(eq + 1);
+        }
         FurnitureReport report = runFurnitureJob(*job);
         for (const std::string& w : report.warnings) fmt::print(stderr, "warning: {}\n", w);
         for (const std::string& f : report.written) fmt::print("wrote {}\n", f);

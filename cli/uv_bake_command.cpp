@@ -71,7 +71,8 @@ void run(const UvBakeCliOptions& o) {
     // leaves none of the set behind.
     std::vector<std::string> files = writeTextureSet(maps, *object, o.output, metadata);
     if (o.gltf) {
-        std::vector<std::string> gltf = writeGltfTextureSet(maps, *object, o.output, metadata);
+        std::vector<std::string> gltf =
+            writeGltfTextureSet(maps, *object, o.output, metadata).written;
         files.insert(files.end(), gltf.begin(), gltf.end());
     }
     for (const auto& f : files) fmt::print("wrote {}\n", f);

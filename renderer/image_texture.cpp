@@ -4,13 +4,15 @@
 
 #include <cmath>
 
+#include "grain/cielab.h"
 #include "renderer/image_file.h"
 #include "util/input_error.h"
 
 namespace nenrin {
 
-ImageTexture ImageTexture::load(const std::string& path, int channels) {
+ImageTexture ImageTexture::load(const std::string& path, int channels, TextureValues values) {
     const ImageFile image = readImageFile(path);
+    const bool decode = values == TextureValues::Colour && !image.floatingPoint;
     struct {
         int width, height, nchannels;
     } spec{image.width, image.height, image.channels};
@@ -27,7 +29,7 @@ ImageTexture ImageTexture::load(const std::string& path, int channels) {
                 throw InputError(path,
                                  fmt::format("pixel ({}, {})", i % spec.width, i / spec.width),
                                  "expected finite values");
-            t.texels_[i * channels + c] = v;
+            t.texels_[i * channels + c] = decode ? float(linearFromSrgb(v)) : v;
         }
     }
     return t;

@@ -10,11 +10,16 @@
 
 namespace nenrin {
 
+/// What a texture's values are: colour (an 8- or 16-bit image holds sRGB-encoded values, made
+/// linear on reading; float images are linear already) or data (normals, directions: as read).
+enum class TextureValues { Colour, Data };
+
 class ImageTexture {
 public:
     /// Reads the first `channels` channels (a grey image is repeated). Throws InputError for a
     /// missing or unreadable file, or one with non-finite texels.
-    static ImageTexture load(const std::string& path, int channels);
+    static ImageTexture load(const std::string& path, int channels,
+                             TextureValues values = TextureValues::Data);
 
     /// Bilinear lookup; fills `channels()` values.
     void lookup(double u, double v, float* out) const;

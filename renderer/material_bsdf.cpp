@@ -1,6 +1,8 @@
 #include "renderer/material_bsdf.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 namespace nenrin {
 
@@ -46,12 +48,15 @@ Vec3 texturedLayers(const Material& material, const MaterialHit& at, SurfaceBsdf
     bsdf.coatWeight = finish.coatWeight;
     bsdf.coatAlpha = std::max(finish.coatRoughness, at.minRoughness);
     bsdf.ior = finish.coatIor;
-    Vec3 tangent = normalize(hit.dpdu - ns * dot(ns, hit.dpdu));
-    Vec3 bitangent = cross(ns, tangent);
+    // The frame the maps were baked in: the normal before the normal map bumps it (the
+    // fibre is a direction in the wood, not tilted by the relief).
+    const Vec3 normal = ns;
+    Vec3 tangent = normalize(hit.dpdu - normal * dot(normal, hit.dpdu));
+    Vec3 bitangent = cross(normal, tangent);
     if (dot(bitangent, hit.dpdv) < 0) bitangent = -bitangent;
     auto fromTangentSpace = [&](const ImageTexture& map) {
         Vec3 e = map.lookup3(hit.u, hit.v) * 2 - Vec3{1, 1, 1};
-        return tangent * e.x + bitangent * e.y + ns * e.z;
+        return tangent * e.x + bitangent * e.y + normal * e.z;
     };
     Vec3 fibre;
     if (lengthSquared(tangent) > 0) {
@@ -59,8 +64,20 @@ Vec3 texturedLayers(const Material& material, const MaterialHit& at, SurfaceBsdf
             Vec3 bumped = normalize(fromTangentSpace(*material.normalMap));
             if (dot(bumped, at.wo) > 0) ns = bumped;
         }
-        if (material.fibreMap) {
-            fibre = normalize(fromTangentSpace(*material.fibreMap));
+        if (material.fibreMap) fibre = normalize(fromTangentSpace(*material.fibreMap));
+        if (material.anisotropyMap) {
+            // glTF's lobe direction lies across the fibres, in RG; B is 1 - the fibre's angle
+            // out of the surface / 90 degrees (renderer/texture_set/gltf_model.h): the fibre
+            // is the direction turned back by 90 degrees about the normal and tilted out of
+            // the surface by that angle.
+            const Vec3 a = material.anisotropyMap->lookup3(hit.u, hit.v);
+            const double ax = 2 * a.x - 1, ay = 2 * a.y - 1, h = std::hypot(ax, ay);
+            const double dive = (1 - std::clamp(double(a.z), 0.0, 1.0)) * 0.5 * std::numbers::pi;
+            if (h > 1e-6)
+                fibre = normalize((tangent * (ay / h) - bitangent * (ax / h)) * std::cos(dive) +
+                                  normal * std::sin(dive));
+        }
+        if (lengthSquared(fibre) > 0) {
             bsdf.fibreStrength = finish.fibreStrength;
             bsdf.fibreWidth = finish.fibreWidth;
         }

@@ -68,8 +68,9 @@ struct Material {
     double roughness = 0.2;            ///< GGX alpha of the coat / metal
     const WoodShader* wood = nullptr;  ///< wood only
     /// Textured (baked wood maps read back, docs/uv-bake.md): base colour, and optionally
-    /// tangent-space normal and fibre maps, under `finish`.
-    std::shared_ptr<const ImageTexture> baseColourMap, normalMap, fibreMap;
+    /// tangent-space normal and fibre maps (or a glTF anisotropy map instead of the fibre
+    /// map: direction across the fibres in RG, strength in B), under `finish`.
+    std::shared_ptr<const ImageTexture> baseColourMap, normalMap, fibreMap, anisotropyMap;
     Finish finish;
 };
 

@@ -177,15 +177,18 @@ Material readMaterial(JsonReader& r, Scene& scene) {
     if (type == "textured") {
         m.type = MaterialType::Textured;
         if (!r.has("base_colour")) throw r.error("base_colour", "missing: the base colour map");
-        auto texture = [&](const std::string& key) {
+        auto texture = [&](const std::string& key, TextureValues values) {
             const std::string file = resolve(scene, r.string(key, ""));
             return loadReferenced(r, key, [&] {
-                return std::make_shared<ImageTexture>(ImageTexture::load(file, 3));
+                return std::make_shared<ImageTexture>(ImageTexture::load(file, 3, values));
             });
         };
-        m.baseColourMap = texture("base_colour");
-        if (r.has("normal")) m.normalMap = texture("normal");
-        if (r.has("fibre")) m.fibreMap = texture("fibre");
+        m.baseColourMap = texture("base_colour", TextureValues::Colour);
+        if (r.has("normal")) m.normalMap = texture("normal", TextureValues::Data);
+        if (r.has("fibre") && r.has("anisotropy"))
+            throw r.error("anisotropy", "give the fibre map or the anisotropy map, not both");
+        if (r.has("fibre")) m.fibreMap = texture("fibre", TextureValues::Data);
+        if (r.has("anisotropy")) m.anisotropyMap = texture("anisotropy", TextureValues::Data);
         m.finish = readFinish(r);
     } else if (type == "wood") {
         m.type = MaterialType::Wood;
@@ -298,8 +301,11 @@ void readPlainShape(JsonReader& r, Scene& scene, SceneObject& o) {
     o.shape = ShapeType::Mesh;
     if (!r.has("file")) throw r.error("file", "missing: the OBJ or glTF file");
     const std::string file = resolve(scene, r.string("file", ""));
+    const std::string node = r.string("node", "");
+    if (!node.empty() && !isGltfPath(file))
+        throw r.error("node", "only a glTF file (.gltf, .glb) has nodes");
     auto mesh = loadReferenced(r, "file", [&] {
-        return std::make_shared<TriangleMesh>(isGltfPath(file) ? loadGltfMesh(file)
+        return std::make_shared<TriangleMesh>(isGltfPath(file) ? loadGltfMesh(file, node)
                                                                : loadObjMesh(file));
     });
     double scale = r.positive("scale", 1);

@@ -47,7 +47,7 @@ void cutPartBoard(PartPlan& p, const GrowthField& field, const CutPlanParams& ba
     if (width < size.y)
         p.notes.push_back(fmt::format(
             "{:.3g} m wide: wider than a board this log gives, cut from a {:.3g} m board (the "
-            "wood beyond it continues that board's log; glued panels are not made yet)",
+            "wood beyond it continues that board's log: the log is too small for this width)",
             size.y, width));
     p.sawing = sawingAsCut(p.board->treeFromLamella);
     p.treeFromModel = p.board->treeFromLamella * p.frame.modelFromPart().inverse();
@@ -74,6 +74,22 @@ std::string sawingAsCut(const RigidTransform& treeFromLamella) {
     return angle < 30 ? "flat" : angle <= 60 ? "rift" : "quarter";
 }
 
+PartChoice choiceFor(const ModelPart& part, const std::map<std::string, PartChoice>& choices) {
+    auto own = choices.find(part.name);
+    if (own != choices.end()) return own->second;
+    auto panel = part.panel.empty() ? choices.end() : choices.find(part.panel);
+    if (panel == choices.end()) return {};
+    PartChoice c = panel->second;
+    if (c.seed) *c.seed += uint64_t(std::max(0, part.panelBoard - 1));
+    return c;
+}
+
+PartFrame plannedFrame(const ModelPart& part, const PartChoice& choice) {
+    if (choice.fibre) return partFrameAlong(part.mesh, *choice.fibre);
+    if (part.panelFibre) return partFrameAlong(part.mesh, *part.panelFibre);
+    return partFrame(part.mesh);
+}
+
 std::vector<PartPlan> planFurniture(const std::vector<ModelPart>& parts,
                                     const FurniturePlanRequest& request, TreeCache& trees) {
     std::vector<PartPlan> plan;
@@ -82,14 +98,14 @@ std::vector<PartPlan> planFurniture(const std::vector<ModelPart>& parts,
         PartPlan p;
         p.name = part.name;
         p.material = part.material;
+        p.panel = part.panel;
         p.triangles = part.mesh.triangles.size();
-        auto found = request.choices.find(part.name);
-        const PartChoice choice = found == request.choices.end() ? PartChoice{} : found->second;
+        const PartChoice choice = choiceFor(part, request.choices);
         auto byMaterial = request.grainByMaterial.find(part.material);
         p.grain = choice.grain                                  ? *choice.grain
                   : byMaterial != request.grainByMaterial.end() ? byMaterial->second
                                                                 : request.grain;
-        p.frame = choice.fibre ? partFrameAlong(part.mesh, *choice.fibre) : partFrame(part.mesh);
+        p.frame = plannedFrame(part, choice);
         p.seed = choice.seed.value_or(i);
         p.requested = choice.sawing.value_or(request.cut.sawing);
         p.wood = choice.wood.value_or(true);
@@ -125,6 +141,7 @@ nlohmann::json planJson(const std::vector<PartPlan>& plan) {
                             {"width_axis", vec(p.frame.axes[1])},
                             {"size", vec(p.frame.extent)},
                             {"seed", p.seed}};
+        if (!p.panel.empty()) j["panel"] = p.panel;
         if (p.wood) {
             j["grain"] = p.grain;
             j["sawing"] = p.sawing;
@@ -148,16 +165,28 @@ nlohmann::json planJson(const std::vector<PartPlan>& plan) {
     return parts;
 }
 
-std::map<std::string, PartChoice> readPlanChoices(const std::string& file) {
+PlanChoices readPlanChoices(const std::string& file) {
     const nlohmann::json json = parseJsonFile(file);
     JsonReader root(json, file);
-    std::map<std::string, PartChoice> choices;
+    PlanChoices plan;
+    if (const nlohmann::json* grains = root.raw("grain_by_material")) {
+        if (!grains->is_object())
+            throw root.error("grain_by_material",
+                             "expected an object: material name -> grain file");
+        for (const auto& [material, grain] : grains->items()) {
+            if (!grain.is_string())
+                throw root.error("grain_by_material",
+                                 fmt::format("\"{}\": expected a grain file name", material));
+            plan.grainByMaterial[material] = pathRelativeTo(file, grain.get<std::string>());
+        }
+    }
+    std::map<std::string, PartChoice>& choices = plan.parts;
     for (JsonReader& r : root.objectList("parts")) {
         if (!r.has("name")) throw r.error("name", "missing: the part's name");
         const std::string name = r.string("name", "");
         PartChoice c;
         if (r.has("wood")) c.wood = r.boolean("wood", true);
-        if (r.has("grain")) c.grain = r.string("grain", "");
+        if (r.has("grain")) c.grain = pathRelativeTo(file, r.string("grain", ""));
         if (r.has("fibre")) {
             const Vec3 f = r.vec3("fibre", {});
             if (!(length(f) > 1e-9)) throw r.error("fibre", "expected a direction, not zero");
@@ -169,7 +198,7 @@ std::map<std::string, PartChoice> readPlanChoices(const std::string& file) {
         if (!choices.emplace(name, c).second)
             throw r.error("name", fmt::format("\"{}\": a second part of that name", name));
     }
-    return choices;
+    return plan;
 }
 
 }  // namespace nenrin

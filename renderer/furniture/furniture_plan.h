@@ -29,6 +29,7 @@ struct PartChoice {
 
 struct PartPlan {
     std::string name, material;
+    std::string panel;  ///< the glued panel it is a board of ("" if none)
     size_t triangles = 0;
     bool wood = true;
     std::string grain;  ///< the grain file this part's board is cut with
@@ -59,6 +60,14 @@ private:
     std::map<std::pair<std::string, std::string>, std::unique_ptr<GrownTree>> trees_;
 };
 
+/// The user's choices for a part: its own entry of --plan, else its panel's when it is a board
+/// of a glued panel (a seed chosen for the panel numbers its boards seed, seed + 1, ...).
+PartChoice choiceFor(const ModelPart& part, const std::map<std::string, PartChoice>& choices);
+
+/// A part's frame: its fibre the one the user chose, else its panel's, else its longest
+/// principal axis.
+PartFrame plannedFrame(const ModelPart& part, const PartChoice& choice);
+
 /// Plans every part. Parts that are not wood or have no area get no board (a note says why).
 /// Throws InputError naming the part when a board cannot be cut at all.
 std::vector<PartPlan> planFurniture(const std::vector<ModelPart>& parts,
@@ -70,7 +79,12 @@ std::string sawingAsCut(const RigidTransform& treeFromLamella);
 
 /// parts.json (docs/furniture.md).
 nlohmann::json planJson(const std::vector<PartPlan>& plan);
-/// The choices a parts.json holds (only the keys a user may change are read).
-std::map<std::string, PartChoice> readPlanChoices(const std::string& file);
+/// What a user may change in a parts.json: each part's choices and the grain file per
+/// material name (`grain_by_material`). Other keys are read by nobody.
+struct PlanChoices {
+    std::map<std::string, PartChoice> parts;  ///< by part name (or a glued panel's)
+    std::map<std::string, std::string> grainByMaterial;
+};
+PlanChoices readPlanChoices(const std::string& file);
 
 }  // namespace nenrin

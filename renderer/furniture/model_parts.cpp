@@ -13,12 +13,18 @@
 
 namespace nenrin {
 
-namespace {
-
 double triangleArea(const TriangleMesh& m, const std::array<uint32_t, 3>& t) {
     return 0.5 * length(cross(m.positions[t[1]] - m.positions[t[0]],
                               m.positions[t[2]] - m.positions[t[0]]));
 }
+
+double surfaceArea(const TriangleMesh& m) {
+    double area = 0;
+    for (const auto& t : m.triangles) area += triangleArea(m, t);
+    return area;
+}
+
+namespace {
 
 /// The piece made of `triangles` of `model`, with its own compact vertex arrays.
 ModelPart extract(const TriangleMesh& model, const std::vector<size_t>& triangles) {

@@ -238,9 +238,11 @@ tinygltf::Model readModel(const std::string& path) {
 /// Which meshes, with which transforms: the default scene's node trees (every mesh once,
 /// untransformed, in a file without scenes).
 std::vector<std::pair<int, Matrix>> meshInstances(const tinygltf::Model& model,
-                                                  const std::string& path) {
+                                                  const std::string& path,
+                                                  const std::string& nodeName) {
     std::vector<std::pair<int, Matrix>> instances;
-    auto visit = [&](auto&& self, int node, const Matrix& parent, int level) -> void {
+    bool named = false;  // a node of that name was met
+    auto visit = [&](auto&& self, int node, const Matrix& parent, int level, bool inside) -> void {
         if (node < 0 || node >= int(model.nodes.size()))
             throw InputError(path, fmt::format("node {}", node), "the node does not exist");
         if (level > 64)
@@ -248,17 +250,21 @@ std::vector<std::pair<int, Matrix>> meshInstances(const tinygltf::Model& model,
                              "nodes nest deeper than 64 levels (a cycle?)");
         const tinygltf::Node& n = model.nodes[node];
         Matrix world = multiply(parent, localMatrix(n));
-        if (n.mesh >= 0) instances.push_back({n.mesh, world});
-        for (int child : n.children) self(self, child, world, level + 1);
+        if (!nodeName.empty() && n.name == nodeName) inside = named = true;
+        if (n.mesh >= 0 && inside) instances.push_back({n.mesh, world});
+        for (int child : n.children) self(self, child, world, level + 1, inside);
     };
     int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : (model.scenes.empty() ? -1 : 0);
     if (sceneIndex >= int(model.scenes.size()))
         throw InputError(path, "scene", fmt::format("scene {} does not exist", sceneIndex));
     if (sceneIndex >= 0) {
-        for (int root : model.scenes[sceneIndex].nodes) visit(visit, root, identity(), 0);
-    } else {
+        for (int root : model.scenes[sceneIndex].nodes)
+            visit(visit, root, identity(), 0, nodeName.empty());
+    } else if (nodeName.empty()) {
         for (int m = 0; m < int(model.meshes.size()); ++m) instances.push_back({m, identity()});
     }
+    if (!nodeName.empty() && !named)
+        throw InputError(path, "", fmt::format("no node named \"{}\" in the scene", nodeName));
     return instances;
 }
 
@@ -364,9 +370,9 @@ void checkMesh(TriangleMesh& mesh, const AttributeCounts& counts, const std::str
 
 }  // namespace
 
-TriangleMesh loadGltfMesh(const std::string& path) {
+TriangleMesh loadGltfMesh(const std::string& path, const std::string& nodeName) {
     const tinygltf::Model model = readModel(path);
-    const std::vector<std::pair<int, Matrix>> instances = meshInstances(model, path);
+    const std::vector<std::pair<int, Matrix>> instances = meshInstances(model, path, nodeName);
     TriangleMesh mesh;
     Reader reader(path, model);
     AttributeCounts counts;

@@ -14,7 +14,9 @@ namespace nenrin {
 /// the mesh/primitive/accessor for a parse error, a missing or short buffer, an accessor of the
 /// wrong type, non-finite values, indices out of range, sparse accessors, or no triangles.
 /// Images are not decoded; buffers must be files next to the glTF, inside the GLB, or data URIs.
-TriangleMesh loadGltfMesh(const std::string& path);
+/// With `nodeName`, only the meshes of every node of that name and its children
+/// (InputError if the scene has none).
+TriangleMesh loadGltfMesh(const std::string& path, const std::string& nodeName = "");
 
 /// True if `path` ends in .gltf or .glb (any case).
 bool isGltfPath(const std::string& path);

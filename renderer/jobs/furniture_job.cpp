@@ -13,11 +13,15 @@
 #include <numbers>
 
 #include "renderer/colour_management.h"
+#include "renderer/furniture/crease_normals.h"
 #include "renderer/furniture/furniture_plan.h"
+#include "renderer/furniture/glued_panels.h"
 #include "renderer/furniture/model_parts.h"
 #include "renderer/furniture/part_charts.h"
 #include "renderer/path_tracer.h"
 #include "renderer/scene_file.h"
+#include "renderer/texture_set/folder_outputs.h"
+#include "renderer/texture_set/gltf_model.h"
 #include "renderer/texture_set/gltf_texture_set.h"
 #include "renderer/texture_set/uv_bake.h"
 #include "renderer/texture_set/uv_raster.h"
@@ -199,36 +203,40 @@ LoadedModel loadModel(const FurnitureJob& job) {
             "right? the chair of sweethome3d-furniture is in cm)",
             diagonal, job.unit);
     m.parts = splitModelParts(m.mesh, job.model);
+    // Normals where the model has none, so the render, the bakes and the glTF shade alike.
+    for (ModelPart& part : m.parts)
+        if (part.mesh.normals.empty()) part.mesh = withCreaseNormals(part.mesh);
     return m;
 }
 
 /// The cut plan of every part (the log's skeleton already written where `skeleton` says).
-std::vector<PartPlan> planParts(const FurnitureJob& job, const LoadedModel& model,
-                                const std::string& skeleton,
-                                const std::map<std::string, PartChoice>& choices) {
+std::vector<PartPlan> planParts(const FurnitureJob& job, const std::vector<ModelPart>& parts,
+                                const std::string& sizeWarning, const std::string& skeleton,
+                                const PlanChoices& choices) {
     FurniturePlanRequest request;
-    request.grain = job.grain;
+    // Absolute, so that parts.json and scene.json work from any folder.
+    request.grain = fs::absolute(job.grain).string();
     request.skeleton = skeleton;
     request.cut.seed = static_cast<uint64_t>(job.seed);
     request.cut.sawing = job.sawing == "flat"      ? Sawing::Flat
                          : job.sawing == "quarter" ? Sawing::Quarter
                                                    : Sawing::Mixed;
-    request.choices = choices;
+    request.choices = choices.parts;
+    request.grainByMaterial = choices.grainByMaterial;
     TreeCache trees;
     try {
-        return planFurniture(model.parts, request, trees);
+        return planFurniture(parts, request, trees);
     } catch (const InputError& e) {
         // A board too big for the log is most often a model in other units: say so.
-        if (model.sizeWarning.empty()) throw;
-        throw InputError(e.file(), e.where(), e.message() + "; " + model.sizeWarning);
+        if (sizeWarning.empty()) throw;
+        throw InputError(e.file(), e.where(), e.message() + "; " + sizeWarning);
     }
 }
 
 /// Bakes part `index` of the work folder's scene onto its uvs and writes its texture set
 /// (glTF with PNG maps, docs/uv-bake.md) into `folder`.
-std::vector<std::string> writePartTextures(const Scene& scene, size_t index,
-                                           const std::string& folder, const std::string& finalScene,
-                                           const FurnitureJob& job) {
+GltfTextureSet writePartTextures(const Scene& scene, size_t index, const std::string& folder,
+                                 const std::string& finalScene, const FurnitureJob& job) {
     const SceneObject& object = scene.objects[index];
     UvBakeOptions options;
     options.width = options.height = job.textureSize;
@@ -245,11 +253,47 @@ std::vector<std::string> writePartTextures(const Scene& scene, size_t index,
 void warnUnusedChoices(const std::map<std::string, PartChoice>& choices,
                        const std::vector<ModelPart>& parts, const std::string& planFile,
                        std::vector<std::string>& warnings) {
-    for (const auto& [name, choice] : choices)
+    for (const auto& entry : choices) {
+        const std::string& name = entry.first;  // a structured binding: clang 14 cannot capture it
         if (std::none_of(parts.begin(), parts.end(),
-                         [&](const ModelPart& p) { return p.name == name; }))
+                         [&](const ModelPart& p) { return p.name == name || p.panel == name; }))
             warnings.push_back(fmt::format(
                 "{}: part \"{}\" is not in the model: its choices were not used", planFile, name));
+    }
+}
+
+/// Every wood part's texture set in its own folder (textures/NNN-NAME, noted in `planned`),
+/// and the whole model as one glTF, DIR/MODEL.glb, whose wood parts show those sets.
+void writeTextureSets(const FurnitureJob& job, const Scene& scene,
+                      const std::vector<ModelPart>& parts, const std::vector<PartPlan>& plan,
+                      const std::vector<TriangleMesh>& meshes,
+                      const std::vector<std::string>& files, nlohmann::json& planned,
+                      FurnitureReport& report) {
+    const fs::path out = job.output;
+    const std::string scenePath = (out / "scene.json").string();
+    std::vector<GltfNode> nodes(parts.size());
+    std::vector<GltfImage> images;
+    for (size_t i = 0; i < parts.size(); ++i) {
+        GltfNode& node = nodes[i];
+        node.name = parts[i].name;
+        node.mesh = &meshes[i];
+        node.materialName = parts[i].material.empty() ? "not-wood" : parts[i].material;
+        if (!plan[i].wood) continue;
+        const std::string set = "textures/" + fs::path(files[i]).stem().string();
+        planned[i]["textures"] = set;
+        GltfTextureSet written = writePartTextures(scene, i, (out / set).string(), scenePath, job);
+        report.written.insert(report.written.end(), written.written.begin(), written.written.end());
+        node.materialName = fs::path(files[i]).stem().string();
+        node.finish = written.finish;
+        for (size_t k = 0; k < written.images.size(); ++k) {
+            node.images[k] = int(images.size());
+            images.push_back({set + "/" + written.images[k].uri, std::move(written.images[k].png)});
+        }
+    }
+    FolderOutputs model(out.string(), "the model's glTF files");
+    writeGltfModel(nodes, images, fs::path(job.model).stem().string(),
+                   std::string("nenrin ") + NENRIN_VERSION, model);
+    for (const std::string& f : model.commit()) report.written.push_back(f);
 }
 
 }  // namespace
@@ -273,7 +317,6 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
     FurnitureReport report;
     const LoadedModel model = loadModel(job);
     if (!model.sizeWarning.empty()) report.warnings.push_back(model.sizeWarning);
-    const std::vector<ModelPart>& parts = model.parts;
 
     WorkFolder work;
     std::string skeleton = job.skeleton;
@@ -281,9 +324,14 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
         writePlain(work.path() / "skeleton.json", kStraightTrunk);
         skeleton = (work.path() / "skeleton.json").string();
     }
-    const std::map<std::string, PartChoice> choices =
-        job.plan.empty() ? std::map<std::string, PartChoice>{} : readPlanChoices(job.plan);
-    const std::vector<PartPlan> plan = planParts(job, model, skeleton, choices);
+    PlanChoices userChoices = job.plan.empty() ? PlanChoices{} : readPlanChoices(job.plan);
+    for (const auto& [material, grain] : job.grainByMaterial)
+        userChoices.grainByMaterial[material] = fs::absolute(grain).string();
+    const std::map<std::string, PartChoice>& choices = userChoices.parts;
+    // Wide panels become boards glued side by side, each a part.
+    const std::vector<ModelPart> parts = glueWidePanels(model.parts, choices);
+    const std::vector<PartPlan> plan =
+        planParts(job, parts, model.sizeWarning, skeleton, userChoices);
     warnUnusedChoices(choices, parts, job.plan, report.warnings);
 
     // The parts with uvs a texture set can be baked on: the model's own where they are
@@ -328,27 +376,22 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
     }
     for (auto& m : scene["materials"])
         if (m.contains("skeleton")) m["skeleton"] = finalSkeleton;
+    const std::string scenePath = (out / "scene.json").string();
     nlohmann::json planned = planJson(plan);
     for (size_t i = 0; i < parts.size(); ++i) {
         planned[i]["file"] = "parts/" + files[i];
         planned[i]["uvs"] = charted[i] ? "charts" : "model";
     }
-    for (size_t i = 0; i < parts.size(); ++i)
-        if (plan[i].wood && job.textureSize > 0) {
-            const std::string folder = (out / "textures" / fs::path(files[i]).stem()).string();
-            planned[i]["textures"] = "textures/" + fs::path(files[i]).stem().string();
-            for (const std::string& f :
-                 writePartTextures(*loaded, i, folder, (out / "scene.json").string(), job))
-                report.written.push_back(f);
-        }
+    if (job.textureSize > 0)
+        writeTextureSets(job, *loaded, parts, plan, meshes, files, planned, report);
     const nlohmann::json partsJson = {{"model", fs::absolute(job.model).string()},
                                       {"unit", job.unit},
                                       {"skeleton", finalSkeleton},
-                                      {"grain", job.grain},
+                                      {"grain", fs::absolute(job.grain).string()},
+                                      {"grain_by_material", userChoices.grainByMaterial},
                                       {"seed", job.seed},
                                       {"parts", planned}};
     const std::string partsPath = (out / "parts.json").string();
-    const std::string scenePath = (out / "scene.json").string();
     const std::string previewPath = (out / "preview.png").string();
     writeTextAtomically(partsPath, partsJson.dump(2) + "\n", "parts plan");
     writeTextAtomically(scenePath, scene.dump(2) + "\n", "scene");

@@ -5,6 +5,7 @@
 /// camera framing it), preview.png rendered from it, and every wood part's texture set (glTF
 /// with PNG maps, baked on its uvs). All outputs or none.
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct FurnitureJob {
     std::string output;    ///< folder
     std::string unit = "m";
     std::string plan;  ///< a parts.json to re-do the job with
+    /// Grain file per material name (--grain-for), over the plan's `grain_by_material`.
+    std::map<std::string, std::string> grainByMaterial;
+    std::vector<std::string> grainFor;  ///< the command line's MATERIAL=FILE pairs
     std::string sawing = "mixed";
     long long seed = 1;
     int textureSize = 1024;  ///< texels of each part's texture set; 0 = none

@@ -15,6 +15,7 @@
 #include "renderer/furniture/model_parts.h"
 #include "renderer/furniture/part_charts.h"
 #include "renderer/furniture/part_frame.h"
+#include "renderer/geometry/gltf_mesh.h"
 #include "renderer/jobs/furniture_job.h"
 #include "renderer/scene_file.h"
 #include "renderer/texture_set/uv_raster.h"
@@ -234,7 +235,10 @@ TEST(FurnitureParts, GltfNodeTransformsTurnTheirPartsFibre) {
         {"scenes", {{{"nodes", {0, 1}}}}},
         {"nodes",
          {{{"mesh", 0}, {"name", "rail"}},
-          {{"mesh", 0}, {"translation", {0, 0.5, 0}}, {"rotation", {0, 0, h, h}}}}},
+          {{"mesh", 0},
+           {"name", "turned"},
+           {"translation", {0, 0.5, 0}},
+           {"rotation", {0, 0, h, h}}}}},
         {"meshes",
          {{{"name", "rail"},
            {"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
@@ -256,6 +260,11 @@ TEST(FurnitureParts, GltfNodeTransformsTurnTheirPartsFibre) {
     std::ofstream(file) << gltf.dump();
     const std::vector<ModelPart> parts =
         splitModelParts(loadFurnitureModel(file.string(), 1.0), file.string());
+    // One node alone (a scene's mesh object with "node"), with its transform.
+    const TriangleMesh turned = loadGltfMesh(file.string(), "turned");
+    EXPECT_EQ(turned.triangles.size(), 12u);
+    EXPECT_NEAR(partFrame(turned).centre.y, 0.5, 1e-6);
+    EXPECT_THROW(loadGltfMesh(file.string(), "seat"), InputError);
     fs::remove(file);
     ASSERT_EQ(parts.size(), 2u);
     EXPECT_EQ(parts[0].name, "rail");
@@ -303,7 +312,7 @@ TEST(FurnitureJob, TheSceneHoldsEveryPartWhereThePlanSays) {
             ++checked;
         }
     }
-    EXPECT_EQ(checked, 17u);
+    EXPECT_EQ(checked, 19u);       // 17 pieces, the seat glued from three boards
     EXPECT_GT(tints.size(), 10u);  // boards from different trees differ
     // The chair's own uvs are degenerate (a face's corners share one vt): every part got
     // charts of its own, which cover it once (no texel claimed twice, none degenerate).

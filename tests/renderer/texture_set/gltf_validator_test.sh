@@ -3,7 +3,8 @@
 # gltf-validator, installed into tests/node by scripts/install-deps) with zero errors and zero
 # warnings: the UV-test cube (six charts, a matte finish), the table top (oiled), a bare-finish
 # piece (no coat, no anisotropy: the extensions left out), and a bake whose input mesh is itself
-# a glTF (.glb), and the seventeen part sets of `nenrin furniture`'s oak chair. Usage: gltf_validator_test.sh NENRIN SOURCE_DIR (ctest label gltf).
+# a glTF (.glb), and the nineteen part sets of `nenrin furniture`'s oak chair (seventeen
+# pieces, the seat glued from three boards) and the whole chair's .gltf and .glb. Usage: gltf_validator_test.sh NENRIN SOURCE_DIR (ctest label gltf).
 set -euo pipefail
 nenrin="$1"
 src="$2"
@@ -59,6 +60,8 @@ check "$work/from-glb/cube.gltf" "$work/from-glb/cube.glb"
   --grain "$src/scenes/grain/species/european-oak.json" --res 64 --preview 32 -q \
   -o "$work/chair" > /dev/null
 sets=("$work"/chair/textures/*/*.glb)
-[[ ${#sets[@]} -eq 17 ]] || { echo "FAIL: ${#sets[@]} chair part sets, expected 17"; exit 1; }
+[[ ${#sets[@]} -eq 19 ]] || { echo "FAIL: ${#sets[@]} chair part sets, expected 19"; exit 1; }
 check "${sets[@]}"
+# The whole chair as one model, every part a node showing its set.
+check "$work/chair/oakChair.gltf" "$work/chair/oakChair.glb"
 echo "PASS"
