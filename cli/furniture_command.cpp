@@ -15,11 +15,13 @@ void addFurnitureCommand(CLI::App& app) {
         "furniture",
         "A piece of furniture in solid wood: the model's parts (objects, groups, glTF meshes, "
         "then\n"
-        "each one's connected pieces), every wood part its own board from the log with its fibre\n"
-        "along the part's longest axis. Writes DIR/parts.json (the plan: edit it and pass it back\n"
-        "with --plan), DIR/parts/*.obj (in metres), DIR/scene.json (a nenrin scene of the model,\n"
-        "camera framing it), DIR/preview.png rendered from it and DIR/textures/PART/ (each wood\n"
-        "part's texture set, glTF with PNG maps, baked on its uvs) (docs/furniture.md).");
+        "each one's connected pieces; panels over 20 cm wide glued from boards), every wood part\n"
+        "its own board from the log with its fibre along the part. Writes DIR/parts.json (the\n"
+        "plan: edit it and pass it back with --plan), DIR/parts/*.obj (in metres), DIR/scene.json\n"
+        "(a nenrin scene of the model), DIR/preview.png rendered from it, DIR/textures/PART/ "
+        "(each\n"
+        "wood part's texture set) and DIR/MODEL.glb (+ .gltf, .bin: the whole model, every part\n"
+        "with its set) (docs/furniture.md).");
     cmd->add_option("model", job->model, "The model: Wavefront OBJ or glTF 2.0 (.gltf, .glb)")
         ->required();
     cmd->add_option("--grain", job->grain, "Grain file of the wood (a species preset)")->required();
