@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "bake_command.h"
+#include "compare_command.h"
 #include "farm_command.h"
 #include "furniture_command.h"
 #include "grain_command.h"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
     nenrin::addBatchCommand(app);
     nenrin::addFarmCommand(app);
     nenrin::addPovCommands(app);
+    nenrin::addCompareCommand(app);
     nenrin::addTreeCommands(app);
     nenrin::addStandCommands(app);
     nenrin::addStatsCommand(app);

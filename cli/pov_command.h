@@ -1,5 +1,5 @@
 #pragma once
-/// `nenrin pov SCENE.json -o DIR/` and `nenrin compare A.exr B.exr [--diff D.exr]`.
+/// `nenrin pov SCENE.json -o DIR/`.
 
 #include <CLI/CLI.hpp>
 

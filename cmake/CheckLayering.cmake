@@ -23,6 +23,7 @@ set(sources_of_library
     "renderer/farm:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/jobs:renderer/farm,renderer/bake,renderer/furniture,renderer/texture_set,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/stats:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
+    "renderer/image_error:"
     "cli:*")
 
 set(libraries "")
