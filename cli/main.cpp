@@ -9,6 +9,7 @@
 
 #include "bake_command.h"
 #include "compare_command.h"
+#include "denoise_command.h"
 #include "farm_command.h"
 #include "furniture_command.h"
 #include "grain_command.h"
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
     nenrin::addBakeCommands(app);
     nenrin::addGrainCommands(app);
     nenrin::addRenderCommand(app);
+    nenrin::addDenoiseCommand(app);
     nenrin::addMergeCommand(app);
     nenrin::addBatchCommand(app);
     nenrin::addFarmCommand(app);

@@ -21,9 +21,10 @@ set(sources_of_library
     "renderer/pov:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/preview:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/farm:renderer/bake,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
-    "renderer/jobs:renderer/farm,renderer/bake,renderer/furniture,renderer/texture_set,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
+    "renderer/jobs:renderer/denoise,renderer/farm,renderer/bake,renderer/furniture,renderer/texture_set,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/stats:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/image_error:"
+    "renderer/denoise:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "cli:*")
 
 set(libraries "")

@@ -20,11 +20,13 @@ void Film::resize(int w, int h, int first, int count) {
     growthTime.assign(n, 0);
     knot.assign(n, 0);
     lamella.assign(n, -1);
+    variance.assign(n, 0);
 }
 
 std::vector<std::string> filmChannelNames(bool adaptive) {
-    std::vector<std::string> names = {"R",   "G",   "B",   "A", "albedo.R", "albedo.G", "albedo.B",
-                                      "N.X", "N.Y", "N.Z", "Z", "T",        "knot",     "lamella"};
+    std::vector<std::string> names = {"R",        "G",        "B",    "A",       "albedo.R",
+                                      "albedo.G", "albedo.B", "N.X",  "N.Y",     "N.Z",
+                                      "Z",        "T",        "knot", "lamella", "variance"};
     if (adaptive) names.push_back("samples");
     return names;
 }
@@ -32,9 +34,38 @@ std::vector<std::string> filmChannelNames(bool adaptive) {
 std::string filmChannelDescription(bool adaptive) {
     std::string text =
         "R,G,B: scene-linear radiance; A: coverage; albedo; N: world normal; Z: depth along "
-        "the view axis (m); T: growth time (years); knot: 0..1; lamella: board id or -1";
+        "the view axis (m); T: growth time (years); knot: 0..1; lamella: board id or -1; variance: "
+        "of the pixel's mean "
+        "luminance";
     if (adaptive) text += "; samples: samples the pixel took";
     return text;
+}
+
+Film filmFromExr(const FloatExr& image, const std::string& file) {
+    Film film;
+    film.resize(image.width, image.height);
+    const size_t channels = image.channels.size();
+    const bool adaptive = channels == filmChannelNames(true).size();
+    if (image.channels != filmChannelNames(adaptive))
+        throw InputError(file, "channels",
+                         "not the channels of a nenrin render (docs/render.md#outputs)");
+    if (adaptive) film.samples.assign(film.alpha.size(), 0);
+    for (size_t i = 0; i < film.alpha.size(); ++i) {
+        const float* p = &image.pixels[i * channels];
+        for (int c = 0; c < 3; ++c) {
+            film.rgb[3 * i + c] = p[c];
+            film.albedo[3 * i + c] = p[4 + c];
+            film.normal[3 * i + c] = p[7 + c];
+        }
+        film.alpha[i] = p[3];
+        film.depth[i] = p[10];
+        film.growthTime[i] = p[11];
+        film.knot[i] = p[12];
+        film.lamella[i] = p[13];
+        film.variance[i] = p[14];
+        if (adaptive) film.samples[i] = p[15];
+    }
+    return film;
 }
 
 void writeFilmExr(const Film& film, const std::string& path,
@@ -55,7 +86,8 @@ void writeFilmExr(const Film& film, const std::string& path,
         p[11] = film.growthTime[i];
         p[12] = film.knot[i];
         p[13] = film.lamella[i];
-        if (!film.samples.empty()) p[14] = film.samples[i];
+        p[14] = film.variance[i];
+        if (!film.samples.empty()) p[15] = film.samples[i];
     }
     AtomicOutput out(path);
     writeFloatExr(path, out.temporaryPath(), film.width, film.height, names, pixels.data(),

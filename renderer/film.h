@@ -8,6 +8,8 @@
 ///   T            growth time (years) at the first hit on wood
 ///   knot         knot share (0..1) at the first hit on wood
 ///   lamella      id of the board at the first sample's hit, -1 if none (not laminated)
+///   variance     variance of the pixel's mean luminance: the samples' luminance variance
+///                over their count (0 for one sample); what a denoiser trusts the pixel by
 ///   samples      samples the pixel took (adaptive sampling only)
 /// Each AOV but lamella is the mean over the samples that contribute to it (hits for albedo,
 /// N and Z, wood hits for T and knot); 0 where none did.
@@ -23,7 +25,7 @@ struct Film {
     /// The rows the film holds: all of them, unless a split job (--tile) renders a band.
     int firstRow = 0, rows = 0;
     std::vector<float> rgb, albedo, normal;  ///< 3 per pixel, row firstRow first
-    std::vector<float> alpha, depth, growthTime, knot, lamella;
+    std::vector<float> alpha, depth, growthTime, knot, lamella, variance;
     std::vector<float> samples;  ///< per pixel; empty unless sampling was adaptive
 
     /// A frame of w x h holding rows [first, first + count) (count < 0: to the bottom).
@@ -34,6 +36,11 @@ struct Film {
 std::vector<std::string> filmChannelNames(bool adaptive);
 /// The same channels in words, for the EXR header (nenrin:channels).
 std::string filmChannelDescription(bool adaptive);
+
+struct FloatExr;
+/// The film a render EXR holds (its channels must be filmChannelNames'); InputError naming
+/// `file` otherwise.
+Film filmFromExr(const FloatExr& image, const std::string& file);
 
 /// Writes all channels as 32-bit float EXR (zip), atomically; `metadata` goes into the header
 /// as nenrin:KEY strings. A band of rows is written as that EXR data window of the frame.

@@ -1,5 +1,7 @@
 #include "renderer/film_tile.h"
 
+#include <algorithm>
+
 namespace nenrin {
 
 void TileAovs::writeInto(Film& film, int x0, int y0, int tw, int th,
@@ -14,6 +16,10 @@ void TileAovs::writeInto(Film& film, int x0, int y0, int tw, int th,
             film.rgb[3 * f + 1] = float(c.g);
             film.rgb[3 * f + 2] = float(c.b);
             film.alpha[f] = float(hits[p] * inv);
+            // The samples' variance (unbiased) over their count: the variance of the mean.
+            const double n = samples[p], y = luminance(c);
+            film.variance[f] =
+                n > 1 ? float(std::max(0.0, (luminanceSquares[p] - n * y * y) / (n - 1)) / n) : 0;
             if (!film.samples.empty()) film.samples[f] = float(samples[p]);
             if (hits[p] > 0) {
                 double h = 1 / hits[p];

@@ -20,7 +20,8 @@ struct TileAovs {
     std::vector<Rgb> rgb, albedo;
     std::vector<Vec3> normal;
     std::vector<double> hits, depth, woodHits, growthTime, knot;
-    std::vector<int32_t> lamella;  ///< the board the pixel's first sample hit, -1 if none
+    std::vector<double> luminanceSquares;  ///< sum over the samples of luminance squared
+    std::vector<int32_t> lamella;          ///< the board the pixel's first sample hit, -1 if none
 
     explicit TileAovs(size_t n)
         : rgb(n),
@@ -31,7 +32,16 @@ struct TileAovs {
           woodHits(n),
           growthTime(n),
           knot(n),
+          luminanceSquares(n),
           lamella(n, -1) {}
+
+    /// A finished sample's radiance.
+    void addRadiance(uint32_t pixel, const Rgb& radiance) {
+        rgb[pixel] = rgb[pixel] + radiance;
+        const double y = luminance(radiance);
+        luminanceSquares[pixel] += y * y;
+    }
+    static double luminance(const Rgb& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
     /// A camera ray that found an emitter's face: a hit, without albedo.
     void addEmitterHit(uint32_t pixel, double viewDepth, const Vec3& geometricNormal) {

@@ -286,7 +286,7 @@ void TileRenderer::traceShadows(TileAovs& aovs) {
             if (!shadows_[next].blocked)
                 path.radiance = path.radiance + shadows_[next].contribution;
         if (!finished_[i]) continue;
-        aovs.rgb[path.pixel] = aovs.rgb[path.pixel] + path.radiance;
+        aovs.addRadiance(path.pixel, path.radiance);
         sampling_.addSample(path.pixel, path.sample, path.radiance);
     }
 }

@@ -71,31 +71,6 @@ Vec3 parseVec3(const FloatExr& exr, const std::string& key) {
     return v;
 }
 
-Film filmOf(const FloatExr& image) {
-    Film film;
-    film.resize(image.width, image.height);
-    const size_t channels = image.channels.size();
-    const bool adaptive = channels == filmChannelNames(true).size();
-    if (image.channels != filmChannelNames(adaptive))
-        throw InputError("merged job", "channels", "not the channels of a render");
-    if (adaptive) film.samples.assign(film.alpha.size(), 0);
-    for (size_t i = 0; i < film.alpha.size(); ++i) {
-        const float* p = &image.pixels[i * channels];
-        for (int c = 0; c < 3; ++c) {
-            film.rgb[3 * i + c] = p[c];
-            film.albedo[3 * i + c] = p[4 + c];
-            film.normal[3 * i + c] = p[7 + c];
-        }
-        film.alpha[i] = p[3];
-        film.depth[i] = p[10];
-        film.growthTime[i] = p[11];
-        film.knot[i] = p[12];
-        film.lamella[i] = p[13];
-        if (adaptive) film.samples[i] = p[14];
-    }
-    return film;
-}
-
 BakedGrid gridOf(const MergedJob& job) {
     const FloatExr& image = job.image;
     if (image.channels != std::vector<std::string>(kBakeChannels.begin(), kBakeChannels.end()))
@@ -230,7 +205,7 @@ std::vector<std::string> writeMergedJob(const MergedJob& job, const std::string&
     if (job.kind == JobKind::BakeVolume && !png.empty())
         throw InputError(png, "", "a volume has no PNG preview");
     if (job.kind == JobKind::Render) {
-        Film film = filmOf(job.image);
+        Film film = filmFromExr(job.image, "merged job");
         writeFilmExr(film, output, job.image.metadata);
         std::vector<std::string> files{output};
         if (!png.empty()) {

@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <chrono>
 #include <map>
 
 #include "renderer/colour_management.h"
+#include "renderer/denoise/atrous_denoiser.h"
 #include "renderer/film.h"
 #include "renderer/scene_file.h"
 #include "util/atomic_output.h"
@@ -68,6 +70,10 @@ RenderJobReport runRenderJob(const RenderJob& job) {
     if (job.part && !job.png.empty())
         throw InputError("command line", "--png",
                          "a part of a split render has no preview: give --png to nenrin merge");
+    if (job.part && job.denoise)
+        throw InputError("command line", "--denoise",
+                         "a part of a split render is not denoised alone (its edges would show): "
+                         "merge the parts, then `nenrin denoise MERGED.exr -o OUT.exr`");
     std::unique_ptr<Scene> scene = loadScene(job.scene, parseSceneOverrides(job.sets));
     applySettings(job, scene->settings);
     const RenderSettings& s = scene->settings;
@@ -77,10 +83,19 @@ RenderJobReport runRenderJob(const RenderJob& job) {
     options.quiet = job.quiet;
     if (job.part)
         options.rows = bandOfPart(s.height, kRenderTileSize, job.part->part, job.part->parts);
-    const std::map<std::string, std::string> metadata = renderMetadata(job, *scene);
+    std::map<std::string, std::string> metadata = renderMetadata(job, *scene);
 
     RenderJobReport report;
     Film film = renderScene(*scene, options, report.stats);
+    if (job.denoise) {
+        const auto start = std::chrono::steady_clock::now();
+        DenoiseOptions denoise;
+        denoise.threads = job.threads;
+        denoiseFilm(film, denoise);
+        report.denoiseSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        metadata["denoised"] = denoiseDescription(denoise);
+    }
     writeFilmExr(film, job.output, metadata);
     report.written.push_back(job.output);
     if (!job.png.empty()) {
@@ -106,9 +121,11 @@ std::string RenderJobReport::summary() const {
         !part ? fmt::format("{}x{}", s.width, s.height)
               : fmt::format("part {}/{} (rows {}..{} of {}x{})", part->part, part->parts, firstRow,
                             firstRow + rows - 1, s.width, s.height);
-    return fmt::format("{}{} in {:.2f} s: {:.2f} M rays/s ({:.2f} M camera rays/s)", size, samples,
-                       stats.seconds, stats.rays / stats.seconds * 1e-6,
-                       stats.cameraRays / stats.seconds * 1e-6);
+    const std::string denoised =
+        denoiseSeconds >= 0 ? fmt::format("; denoised in {:.2f} s", denoiseSeconds) : "";
+    return fmt::format("{}{} in {:.2f} s: {:.2f} M rays/s ({:.2f} M camera rays/s){}", size,
+                       samples, stats.seconds, stats.rays / stats.seconds * 1e-6,
+                       stats.cameraRays / stats.seconds * 1e-6, denoised);
 }
 
 }  // namespace nenrin

@@ -25,6 +25,7 @@ struct RenderJob {
     long long seed = -1;
     int threads = 0;
     bool quiet = false;
+    bool denoise = false;            ///< the film denoised before it is written (--denoise)
     std::optional<PartNumber> part;  ///< a split job's part (--tile K/N)
     std::vector<std::string> sets;   ///< POINTER=VALUE scene overrides (--set)
 };
@@ -35,6 +36,7 @@ struct RenderJobReport {
     std::optional<PartNumber> part;
     int firstRow = 0, rows = 0;  ///< the band of rows rendered (all of them unless a part)
     RenderStats stats;
+    double denoiseSeconds = -1;  ///< -1: not denoised
     /// One line: size (or part), samples (adaptive: the mean), time and ray rates.
     std::string summary() const;
 };

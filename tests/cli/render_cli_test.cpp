@@ -52,7 +52,8 @@ TEST_F(RenderCliTest, WritesExrWithAovsMetadataAndPngPreview) {
     ASSERT_TRUE(img);
     EXPECT_EQ(img->spec.width, 48);
     EXPECT_EQ(img->spec.height, 32);
-    for (const char* c : {"R", "G", "B", "A", "albedo.R", "N.X", "Z", "T", "knot", "lamella"})
+    for (const char* c :
+         {"R", "G", "B", "A", "albedo.R", "N.X", "Z", "T", "knot", "lamella", "variance"})
         EXPECT_GE(channelIndex(img->spec, c), 0) << c;
     EXPECT_EQ(img->spec.get_string_attribute("nenrin:scene"), kRegressionScene.string());
     EXPECT_EQ(img->spec.get_string_attribute("nenrin:spp"), "2");

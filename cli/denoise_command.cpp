@@ -1,0 +1,74 @@
+#include "denoise_command.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include "renderer/colour_management.h"
+#include "renderer/denoise/atrous_denoiser.h"
+#include "renderer/exr_file.h"
+#include "renderer/film.h"
+#include "util/atomic_output.h"
+#include "util/input_error.h"
+
+namespace nenrin {
+
+namespace {
+
+struct DenoiseArguments {
+    std::string input, output, png;
+    DenoiseOptions options;
+};
+
+void runDenoise(const DenoiseArguments& a) {
+    checkOutputName(a.output, {".exr"});
+    if (!a.png.empty()) checkOutputName(a.png, {".png"});
+    FloatExr image = readFloatExr(a.input);
+    const bool adaptive =
+        std::find(image.channels.begin(), image.channels.end(), "samples") != image.channels.end();
+    orderChannels(image, filmChannelNames(adaptive), a.input);
+    if (image.band.begin != 0 || (image.band.end != -1 && image.band.end != image.height))
+        throw InputError(a.input, "data window",
+                         "a part of a split render: merge the parts first (nenrin merge)");
+    Film film = filmFromExr(image, a.input);
+    if (image.metadata.count("denoised"))
+        throw InputError(a.input, "nenrin:denoised", "the image is denoised already");
+    const auto start = std::chrono::steady_clock::now();
+    denoiseFilm(film, a.options);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::map<std::string, std::string> metadata = image.metadata;
+    metadata["denoised"] = denoiseDescription(a.options);
+    writeFilmExr(film, a.output, metadata);
+    fmt::print("wrote {}\n", a.output);
+    if (!a.png.empty()) {
+        writePreviewPng(a.png, film.rgb, film.width, film.height);
+        fmt::print("wrote {} ({})\n", a.png, displayConfigName());
+    }
+    fmt::print("{}x{} denoised in {:.2f} s\n", film.width, film.height, seconds);
+}
+
+}  // namespace
+
+void addDenoiseCommand(CLI::App& app) {
+    auto a = std::make_shared<DenoiseArguments>();
+    CLI::App* cmd = app.add_subcommand(
+        "denoise",
+        "Denoise a rendered EXR (nenrin render's channels, a split render merged): the "
+        "edge-avoiding a-trous filter guided by its albedo, normal, depth and variance AOVs; "
+        "the grain, which lives in the albedo, is kept (docs/denoise.md)");
+    cmd->add_option("input", a->input, "A nenrin render EXR")->required();
+    cmd->add_option("-o,--output", a->output, "The denoised EXR (the same channels)")->required();
+    cmd->add_option("--png", a->png, "Also write an 8-bit sRGB preview through OpenColorIO");
+    cmd->add_option("--passes", a->options.passes, "Filter passes (each doubles the reach)")
+        ->check(CLI::Range(1, 12))
+        ->default_val(5);
+    cmd->add_option("--threads", a->options.threads, "Worker threads (0 = all cores)")
+        ->check(CLI::Range(0, 1024))
+        ->default_val(0);
+    cmd->callback([a] { runDenoise(*a); });
+}
+
+}  // namespace nenrin

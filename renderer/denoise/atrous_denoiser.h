@@ -1,0 +1,34 @@
+#pragma once
+/// An AOV-guided denoiser for rendered films: the edge-avoiding à-trous wavelet filter
+/// (Dammertz et al., "Edge-Avoiding À-Trous Wavelet Transform for fast Global Illumination
+/// Filtering", HPG 2010) steered by the per-pixel variance of the samples as in Schied et al.,
+/// "Spatiotemporal Variance-Guided Filtering", HPG 2017 (its spatial part). The radiance is
+/// divided by the albedo AOV before filtering and multiplied by it after, so the wood's grain,
+/// which lives in the albedo, is carried by the guide and never blurred; the filter smooths the
+/// illumination, stopping at depth and normal edges and where luminance differs by more than
+/// the noise explains. Every pixel reads only the previous pass: the result does not depend on
+/// the thread count (docs/denoise.md).
+
+#include <string>
+
+#include "renderer/film.h"
+
+namespace nenrin {
+
+struct DenoiseOptions {
+    int passes = 5;             ///< à-trous levels: taps 1, 2, 4, 8, 16 apart, reaching 62 pixels
+    double sigmaLuminance = 4;  ///< luminance differences in standard deviations of the noise
+    double normalExponent = 128;  ///< weight cos(angle between normals)^this
+    double sigmaDepth = 1;        ///< depth differences in units of the local depth slope
+    int threads = 0;              ///< 0 = all cores
+};
+
+/// The filter and its settings in words, for the EXR header (nenrin:denoised).
+std::string denoiseDescription(const DenoiseOptions& options);
+
+/// Replaces `film.rgb` by its denoised radiance. Pixels without a hit (background: alpha 0)
+/// are kept and never mixed with hit ones. `film` must hold the whole frame (a split render is
+/// denoised after its parts are merged); throws std::invalid_argument otherwise.
+void denoiseFilm(Film& film, const DenoiseOptions& options = {});
+
+}  // namespace nenrin
