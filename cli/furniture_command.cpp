@@ -37,6 +37,10 @@ void addFurnitureCommand(CLI::App& app) {
     cmd->add_option("--grain-for", job->grainFor,
                     "MATERIAL=G.json: parts of that material (the model's material name, "
                     "parts.json's `material`) cut from that grain file; repeat for several");
+    cmd->add_option("--finish", job->finish,
+                    "The wood's finish: matte, oiled, varnished, bare, brushed or sawn "
+                    "(docs/scene-format.md)")
+        ->default_val("oiled");
     cmd->add_option("--sawing", job->sawing, "Wide faces flat-, quarter-sawn or mixed")
         ->check(CLI::IsMember({"flat", "quarter", "mixed"}))
         ->default_val("mixed");

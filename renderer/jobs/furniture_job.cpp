@@ -25,6 +25,7 @@
 #include "renderer/texture_set/gltf_texture_set.h"
 #include "renderer/texture_set/uv_bake.h"
 #include "renderer/texture_set/uv_raster.h"
+#include "shader/finish.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
 
@@ -100,7 +101,8 @@ nlohmann::json sceneJson(const std::vector<PartPlan>& plan, const std::vector<st
         if (p.wood && !woodByGrain.count(p.grain)) {
             const std::string name = fmt::format("wood-{}", woodByGrain.size());
             woodByGrain[p.grain] = name;
-            nlohmann::json m = {{"name", name}, {"type", "wood"}, {"skeleton", skeleton}};
+            nlohmann::json m = {
+                {"name", name}, {"type", "wood"}, {"skeleton", skeleton}, {"finish", job.finish}};
             if (!p.grain.empty()) m["grain"] = fs::absolute(p.grain).string();
             materials.push_back(m);
         }
@@ -307,7 +309,12 @@ double metresPerUnit(const std::string& unit) {
 }
 
 FurnitureReport runFurnitureJob(const FurnitureJob& job) {
-    metresPerUnit(job.unit);  // a bad unit fails first
+    metresPerUnit(job.unit);  // a bad unit or finish fails first
+    Finish finish;
+    if (!finishPreset(job.finish, finish))
+        throw InputError(
+            "command line", "--finish",
+            fmt::format("expected one of {}, found \"{}\"", finishPresetNames(), job.finish));
     const fs::path out = job.output;
     if (fs::exists(out) && !fs::is_directory(out))
         throw InputError("command line", "-o", fmt::format("{}: not a folder", job.output));

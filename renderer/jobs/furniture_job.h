@@ -24,6 +24,7 @@ struct FurnitureJob {
     std::map<std::string, std::string> grainByMaterial;
     std::vector<std::string> grainFor;  ///< the command line's MATERIAL=FILE pairs
     std::string sawing = "mixed";
+    std::string finish = "oiled";  ///< a finish preset of the wood (docs/scene-format.md)
     long long seed = 1;
     int textureSize = 1024;  ///< texels of each part's texture set; 0 = none
     int previewWidth = 640, previewHeight = 480, previewSpp = 32;

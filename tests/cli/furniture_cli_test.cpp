@@ -202,14 +202,21 @@ TEST_F(FurnitureCliTest, ThePlanEditedIsFollowed) {
     EXPECT_FALSE(gltf["materials"][material]["pbrMetallicRoughness"].contains("baseColorTexture"));
 }
 
-TEST_F(FurnitureCliTest, SpeciesFollowTheMaterialName) {
+TEST_F(FurnitureCliTest, SpeciesFollowTheMaterialNameAndTheFinishTheOption) {
     const std::string walnut = grainScene("species/walnut.json").string();
     expectInputError(furniture({"-o", (out_ / "x").string(), "--grain-for", "walnut.json"}),
                      {"--grain-for", "MATERIAL=GRAIN.json"});
-    auto r = furniture({"-o", (out_ / "w").string(), "--grain-for", "RED_OAK.001=" + walnut});
+    expectInputError(furniture({"-o", (out_ / "x").string(), "--finish", "lacquered"}),
+                     {"--finish", "lacquered", "varnished"});
+    auto r = furniture({"-o", (out_ / "w").string(), "--grain-for", "RED_OAK.001=" + walnut,
+                        "--finish", "varnished"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json plan = json(out_ / "w/parts.json");
     for (const auto& p : plan["parts"]) EXPECT_EQ(p["grain"], walnut) << p["name"];
+    for (const auto& m : json(out_ / "w/scene.json")["materials"])
+        if (m["type"] == "wood") {
+            EXPECT_EQ(m["finish"], "varnished");
+        }
     EXPECT_EQ(plan["grain_by_material"]["RED_OAK.001"], walnut);
     // The plan passed back keeps the species without the option.
     auto again =
