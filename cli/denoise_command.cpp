@@ -64,7 +64,19 @@ void addDenoiseCommand(CLI::App& app) {
     cmd->add_option("--png", a->png, "Also write an 8-bit sRGB preview through OpenColorIO");
     cmd->add_option("--passes", a->options.passes, "Filter passes (each doubles the reach)")
         ->check(CLI::Range(1, 12))
-        ->default_val(5);
+        ->default_val(a->options.passes);
+    cmd->add_option("--sigma-luminance", a->options.sigmaLuminance,
+                    "Luminance differences smoothed, in standard deviations of the pixel's noise")
+        ->check(CLI::Range(0.1, 100.0))
+        ->default_val(a->options.sigmaLuminance);
+    cmd->add_option("--normal-exponent", a->options.normalExponent,
+                    "Normal weight: cos(angle between the normals) to this power")
+        ->check(CLI::Range(0.0, 10000.0))
+        ->default_val(a->options.normalExponent);
+    cmd->add_option("--sigma-depth", a->options.sigmaDepth,
+                    "Depth differences smoothed, in units of the depth's slope over the distance")
+        ->check(CLI::Range(0.01, 100.0))
+        ->default_val(a->options.sigmaDepth);
     cmd->add_option("--threads", a->options.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024))
         ->default_val(0);

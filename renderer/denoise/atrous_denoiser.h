@@ -16,8 +16,8 @@
 namespace nenrin {
 
 struct DenoiseOptions {
-    int passes = 5;             ///< à-trous levels: taps 1, 2, 4, 8, 16 apart, reaching 62 pixels
-    double sigmaLuminance = 4;  ///< luminance differences in standard deviations of the noise
+    int passes = 3;               ///< à-trous levels: taps 1, 2, 4 apart, reaching 14 pixels
+    double sigmaLuminance = 4;    ///< luminance differences in standard deviations of the noise
     double normalExponent = 128;  ///< weight cos(angle between normals)^this
     double sigmaDepth = 1;        ///< depth differences in units of the local depth slope
     int threads = 0;              ///< 0 = all cores
