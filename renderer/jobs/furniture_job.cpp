@@ -308,8 +308,12 @@ double metresPerUnit(const std::string& unit) {
                      fmt::format("expected mm, cm or m, found \"{}\"", unit));
 }
 
-FurnitureReport runFurnitureJob(const FurnitureJob& job) {
-    metresPerUnit(job.unit);  // a bad unit or finish fails first
+namespace {
+
+/// The command line's settings and the output folder, checked before any work: a bad unit,
+/// finish or folder fails at once.
+void checkJob(const FurnitureJob& job) {
+    metresPerUnit(job.unit);
     Finish finish;
     if (!finishPreset(job.finish, finish))
         throw InputError(
@@ -321,6 +325,13 @@ FurnitureReport runFurnitureJob(const FurnitureJob& job) {
     // The folder, or the one it will be made in, must be writable before the work starts.
     const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
     checkOutputPath(((fs::is_directory(out) ? out : parent) / "parts.json").string());
+}
+
+}  // namespace
+
+FurnitureReport runFurnitureJob(const FurnitureJob& job) {
+    checkJob(job);
+    const fs::path out = job.output;
     FurnitureReport report;
     const LoadedModel model = loadModel(job);
     if (!model.sizeWarning.empty()) report.warnings.push_back(model.sizeWarning);
