@@ -41,7 +41,6 @@ struct TileAovs {
         const double y = luminance(radiance);
         luminanceSquares[pixel] += y * y;
     }
-    static double luminance(const Rgb& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
     /// A camera ray that found an emitter's face: a hit, without albedo.
     void addEmitterHit(uint32_t pixel, double viewDepth, const Vec3& geometricNormal) {

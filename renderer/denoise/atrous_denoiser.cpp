@@ -8,11 +8,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "grain/rgb.h"
+
 namespace nenrin {
 
 namespace {
 
-double luminance(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+double luminance(const float* c) { return luminance(Rgb{c[0], c[1], c[2]}); }
 
 /// What the passes read per pixel: the guides (fixed) and the signal (each pass's output).
 struct Guides {
@@ -188,7 +190,6 @@ void denoiseFilm(Film& film, const DenoiseOptions& options) {
         if (g.hit[i])
             for (int c = 0; c < 3; ++c)
                 film.rgb[3 * i + c] = light[3 * i + c] * g.demodulate[3 * i + c];
-    film.variance = variance;
     for (size_t i = 0; i < n; ++i) {
         const double a = luminance(&g.demodulate[3 * i]);
         film.variance[i] = float(variance[i] * a * a);

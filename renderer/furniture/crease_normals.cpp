@@ -32,16 +32,17 @@ double cornerAngle(const TriangleMesh& mesh, uint32_t t, const std::vector<uint3
 TriangleMesh withCreaseNormals(const TriangleMesh& mesh, double creaseDegrees) {
     const size_t n = mesh.triangles.size();
     const std::vector<uint32_t> welded = weldedVertexIds(mesh);
-    // Each triangle's normal and the triangles round each welded position.
+    // Each triangle's unit normal (zero without area) and the triangles round each welded
+    // position (the ids are dense: 0 .. positions - 1 at most).
     std::vector<Vec3> faceNormal(n);
-    std::map<uint32_t, std::vector<uint32_t>> around;
+    std::vector<std::vector<uint32_t>> around(mesh.positions.size());
     for (size_t t = 0; t < n; ++t) {
         const auto& tri = mesh.triangles[t];
-        faceNormal[t] = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
-                              mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+        const Vec3 normal = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
+                                  mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+        faceNormal[t] = lengthSquared(normal) > 0 ? normalize(normal) : Vec3{};
         for (uint32_t v : tri) around[welded[v]].push_back(uint32_t(t));
     }
-    auto unit = [](const Vec3& v) { return lengthSquared(v) > 0 ? normalize(v) : Vec3{}; };
     const double cosCrease = std::cos(creaseDegrees * std::numbers::pi / 180);
 
     TriangleMesh out;
@@ -53,18 +54,18 @@ TriangleMesh withCreaseNormals(const TriangleMesh& mesh, double creaseDegrees) {
     // A vertex of the output: the input vertex and the normal's bits.
     std::map<std::tuple<uint32_t, double, double, double>, uint32_t> vertexOf;
     for (size_t t = 0; t < n; ++t) {
-        const Vec3 own = unit(faceNormal[t]);
+        const Vec3& own = faceNormal[t];
         for (int c = 0; c < 3; ++c) {
             const uint32_t v = mesh.triangles[t][c];
             Vec3 sum;
             for (uint32_t o : around[welded[v]]) {
-                const Vec3 other = unit(faceNormal[o]);
+                const Vec3& other = faceNormal[o];
                 // A degenerate triangle joins every neighbour; a real one those within the
                 // crease angle.
                 if (lengthSquared(own) == 0 || dot(own, other) >= cosCrease)
                     sum = sum + other * cornerAngle(mesh, o, welded, welded[v]);
             }
-            Vec3 normal = unit(sum);
+            Vec3 normal = lengthSquared(sum) > 0 ? normalize(sum) : Vec3{};
             if (lengthSquared(normal) == 0) normal = lengthSquared(own) > 0 ? own : Vec3{0, 0, 1};
             auto [it, isNew] = vertexOf.try_emplace({v, normal.x, normal.y, normal.z},
                                                     uint32_t(out.positions.size()));
