@@ -43,10 +43,11 @@ std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, co
     };
     const size_t n = input.size();
     swayed.resize(n);
+    RingWander ringWander(wander);
     if (stencil <= 1 || n % stencil != 0) {
         for (size_t i = 0; i < n; ++i) {
             const Vec3 p = inDomain(input[i]);
-            swayed[i] = p + swayDisplacement(p, sway) + ringWander(p, wander);
+            swayed[i] = p + swayDisplacement(p, sway) + ringWander(p);
         }
     } else {
         // The wander is the rings' own small-scale shape: every point of a stencil gets its
@@ -55,7 +56,7 @@ std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, co
             const Vec3 d = swayDisplacement(inDomain(input[i]), sway);
             for (size_t j = i; j < i + stencil; ++j) {
                 const Vec3 p = inDomain(input[j]);
-                swayed[j] = p + d + ringWander(p, wander);
+                swayed[j] = p + d + ringWander(p);
             }
         }
     }

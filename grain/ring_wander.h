@@ -7,8 +7,10 @@
 /// wander independently (no mirror images). Fibres follow: they lie in the displaced ring
 /// surfaces (the shader takes them from grad T). Units: metres.
 
+#include <array>
 #include <cstdint>
 
+#include "util/value_noise.h"
 #include "util/vec3.h"
 
 namespace nenrin {
@@ -23,5 +25,17 @@ struct WanderParams {
 
 /// The displacement at p (each component at most `amplitude`).
 Vec3 ringWander(const Vec3& p, const WanderParams& wander);
+
+/// ringWander at many nearby points (a batch of the field): each octave keeps its last lattice
+/// cell, so neighbouring points share its hashing. The same bits as ringWander.
+class RingWander {
+public:
+    explicit RingWander(const WanderParams& wander);
+    Vec3 operator()(const Vec3& p);
+
+private:
+    WanderParams w_;
+    std::array<ValueNoise3Cache, 4> octaves_;  ///< octaves are 1 to 4 (grain_params.cpp)
+};
 
 }  // namespace nenrin

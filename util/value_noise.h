@@ -17,21 +17,41 @@ inline double cellRandom(uint64_t seed, uint64_t salt, long long a, long long b,
                      static_cast<uint64_t>(c));
 }
 
+/// Where (x, y, z) lies in the unit lattice: its cell's lowest corner and the smoothstep
+/// weights along each axis.
+struct LatticeCell {
+    long long ix, iy, iz;
+    double tx, ty, tz;
+};
+
+inline LatticeCell latticeCell(double x, double y, double z) {
+    const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
+    auto s = [](double t) { return t * t * (3 - 2 * t); };
+    return {(long long)fx, (long long)fy, (long long)fz, s(x - fx), s(y - fy), s(z - fz)};
+}
+
+/// Trilinear interpolation between a cell's eight corner values, corner c at offset
+/// (c & 1, c >> 1 & 1, c >> 2 & 1).
+template <class T>
+inline T blendCorners(const LatticeCell& l, const T* corners) {
+    T v{};
+    for (int c = 0; c < 8; ++c) {
+        const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
+        const double w = (dx ? l.tx : 1 - l.tx) * (dy ? l.ty : 1 - l.ty) * (dz ? l.tz : 1 - l.tz);
+        v = v + corners[c] * w;
+    }
+    return v;
+}
+
 /// Trilinear, smoothstep-weighted interpolation between the values `corner(a, b, c)` gives at
 /// the eight lattice points around (x, y, z); T is double or Vec3.
 template <class T, class Corner>
 inline T smoothLattice(double x, double y, double z, Corner corner) {
-    const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
-    const long long ix = (long long)fx, iy = (long long)fy, iz = (long long)fz;
-    auto s = [](double t) { return t * t * (3 - 2 * t); };
-    const double tx = s(x - fx), ty = s(y - fy), tz = s(z - fz);
-    T v{};
-    for (int c = 0; c < 8; ++c) {
-        const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
-        const double w = (dx ? tx : 1 - tx) * (dy ? ty : 1 - ty) * (dz ? tz : 1 - tz);
-        v = v + corner(ix + dx, iy + dy, iz + dz) * w;
-    }
-    return v;
+    const LatticeCell l = latticeCell(x, y, z);
+    T corners[8];
+    for (int c = 0; c < 8; ++c)
+        corners[c] = corner(l.ix + (c & 1), l.iy + ((c >> 1) & 1), l.iz + ((c >> 2) & 1));
+    return blendCorners(l, corners);
 }
 
 inline double valueNoise(uint64_t seed, double x, double y, double z) {
@@ -40,23 +60,53 @@ inline double valueNoise(uint64_t seed, double x, double y, double z) {
     });
 }
 
+/// The lattice value of valueNoise3 at corner (a, b, c); `base` = hashCombine(seed, 13).
+inline Vec3 valueNoise3Corner(uint64_t base, long long a, long long b, long long c) {
+    constexpr double kUnit = 0x1.0p-21;
+    constexpr uint64_t kMask = (uint64_t(1) << 21) - 1;
+    // Each coordinate hashed in turn: a key such as (a G) ^ b (cellRandom's) gives (a, b) and
+    // (-a, -b) the same value a third of the time, and rings would mirror across the pith.
+    const uint64_t h = hashCombine(
+        hashCombine(hashCombine(base, static_cast<uint64_t>(a)), static_cast<uint64_t>(b)),
+        static_cast<uint64_t>(c));
+    return Vec3{2 * ((h >> 43) & kMask) * kUnit - 1, 2 * ((h >> 22) & kMask) * kUnit - 1,
+                2 * ((h >> 1) & kMask) * kUnit - 1};
+}
+
 /// Three independent value noises at once, each in [-1, 1]: one hash per lattice corner gives
 /// all three (21 bits each), a third of the hashing of three valueNoise calls. For smooth
 /// displacements (ring wander) evaluated many times per sample.
 inline Vec3 valueNoise3(uint64_t seed, double x, double y, double z) {
     const uint64_t base = hashCombine(seed, 13);
     return smoothLattice<Vec3>(x, y, z, [base](long long a, long long b, long long c) {
-        constexpr double kUnit = 0x1.0p-21;
-        constexpr uint64_t kMask = (uint64_t(1) << 21) - 1;
-        // Each coordinate hashed in turn: a key such as (a G) ^ b (cellRandom's) gives (a, b)
-        // and (-a, -b) the same value a third of the time, and rings would mirror across the
-        // pith.
-        const uint64_t h = hashCombine(
-            hashCombine(hashCombine(base, static_cast<uint64_t>(a)), static_cast<uint64_t>(b)),
-            static_cast<uint64_t>(c));
-        return Vec3{2 * ((h >> 43) & kMask) * kUnit - 1, 2 * ((h >> 22) & kMask) * kUnit - 1,
-                    2 * ((h >> 1) & kMask) * kUnit - 1};
+        return valueNoise3Corner(base, a, b, c);
     });
 }
+
+/// valueNoise3 of one seed at many nearby points: the last cell's corner values are kept, so
+/// a point in the same cell as the one before hashes nothing (a tile of samples, or a gradient
+/// stencil, mostly lies in one cell of a centimetre-scale lattice). The same bits as
+/// valueNoise3.
+class ValueNoise3Cache {
+public:
+    explicit ValueNoise3Cache(uint64_t seed = 0) : base_(hashCombine(seed, 13)) {}
+    Vec3 operator()(double x, double y, double z) {
+        const LatticeCell l = latticeCell(x, y, z);
+        if (!valid_ || l.ix != ix_ || l.iy != iy_ || l.iz != iz_) {
+            for (int c = 0; c < 8; ++c)
+                corners_[c] = valueNoise3Corner(base_, l.ix + (c & 1), l.iy + ((c >> 1) & 1),
+                                                l.iz + ((c >> 2) & 1));
+            ix_ = l.ix, iy_ = l.iy, iz_ = l.iz;
+            valid_ = true;
+        }
+        return blendCorners(l, corners_);
+    }
+
+private:
+    uint64_t base_;
+    bool valid_ = false;
+    long long ix_ = 0, iy_ = 0, iz_ = 0;
+    Vec3 corners_[8];
+};
 
 }  // namespace nenrin

@@ -106,5 +106,27 @@ TEST(ValueNoise3, ComponentsAreIndependentAndInRange) {
     EXPECT_NEAR(valueNoise3(9, 3 + 1e-9, 4, 5).x, corner.x, 1e-6);
 }
 
+TEST(RingWander, CachedCellsGiveTheSameBitsAsEachPointAlone) {
+    // A batch walks through lattice cells: runs inside one cell (the cache's case), steps into
+    // the next, jumps back and far away; every octave count. The cache must never show.
+    for (int octaves = 1; octaves <= 4; ++octaves) {
+        WanderParams w = hinokiLike();
+        w.octaves = octaves;
+        RingWander cached(w);
+        for (uint64_t i = 0; i < 4000; ++i) {
+            const Vec3 base = logPoint(i / 16);
+            const Vec3 p =
+                i % 16 == 15 ? logPoint(i + 100000) : base + Vec3{1e-4, 0, 0} * double(i % 16);
+            const Vec3 a = cached(p), b = ringWander(p, w);
+            ASSERT_EQ(a.x, b.x) << octaves << " octaves, point " << i;
+            ASSERT_EQ(a.y, b.y) << octaves << " octaves, point " << i;
+            ASSERT_EQ(a.z, b.z) << octaves << " octaves, point " << i;
+        }
+    }
+    WanderParams off = hinokiLike();
+    off.amplitude = 0;
+    EXPECT_EQ(length(RingWander(off)(logPoint(3))), 0.0);
+}
+
 }  // namespace
 }  // namespace nenrin
