@@ -41,7 +41,7 @@ void runDenoise(const DenoiseArguments& a) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::map<std::string, std::string> metadata = image.metadata;
     metadata["denoised"] = denoiseDescription(a.options);
-    writeFilmExr(film, a.output, metadata);
+    writeFilmExr(film, a.output, metadata, a.options.threads);
     fmt::print("wrote {}\n", a.output);
     if (!a.png.empty()) {
         writePreviewPng(a.png, film.rgb, film.width, film.height);

@@ -19,11 +19,12 @@ enum class ExrValues { SceneLinear, Data };
 /// Writes `pixels` (channel-interleaved, row 0 at the top) to `writePath`; errors name
 /// `finalPath` (the name the caller will rename it to). A channel named "A" is the alpha.
 /// With a band, `pixels` hold only its rows, written as the EXR data window of a width x
-/// height frame (the display window): how the parts of a split job are stored.
+/// height frame (the display window): how the parts of a split job are stored. `threads` > 1
+/// compresses that many blocks of rows at once (the file's bytes do not depend on it).
 void writeFloatExr(const std::string& finalPath, const std::string& writePath, int width,
                    int height, const std::vector<std::string>& channels, const float* pixels,
                    const std::map<std::string, std::string>& metadata, RowBand band = {},
-                   ExrValues values = ExrValues::SceneLinear);
+                   ExrValues values = ExrValues::SceneLinear, int threads = 1);
 
 /// An EXR read back whole: its data window, channels, pixels and nenrin:KEY metadata.
 struct FloatExr {

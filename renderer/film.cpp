@@ -1,6 +1,7 @@
 #include "renderer/film.h"
 
 #include "renderer/exr_file.h"
+#include "renderer/parallel_tiles.h"
 #include "util/atomic_output.h"
 #include "util/input_error.h"
 
@@ -69,7 +70,7 @@ Film filmFromExr(const FloatExr& image, const std::string& file) {
 }
 
 void writeFilmExr(const Film& film, const std::string& path,
-                  const std::map<std::string, std::string>& metadata) {
+                  const std::map<std::string, std::string>& metadata, int threads) {
     const std::vector<std::string> names = filmChannelNames(!film.samples.empty());
     const int channels = static_cast<int>(names.size());
     const size_t n = size_t(film.width) * film.rows;
@@ -91,7 +92,8 @@ void writeFilmExr(const Film& film, const std::string& path,
     }
     AtomicOutput out(path);
     writeFloatExr(path, out.temporaryPath(), film.width, film.height, names, pixels.data(),
-                  metadata, {film.firstRow, film.firstRow + film.rows});
+                  metadata, {film.firstRow, film.firstRow + film.rows}, ExrValues::SceneLinear,
+                  workerThreads(threads));
     out.commit();
 }
 

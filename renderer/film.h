@@ -44,7 +44,8 @@ Film filmFromExr(const FloatExr& image, const std::string& file);
 
 /// Writes all channels as 32-bit float EXR (zip), atomically; `metadata` goes into the header
 /// as nenrin:KEY strings. A band of rows is written as that EXR data window of the frame.
+/// `threads` (0 = all cores) compress it (the same bytes for any count).
 void writeFilmExr(const Film& film, const std::string& path,
-                  const std::map<std::string, std::string>& metadata);
+                  const std::map<std::string, std::string>& metadata, int threads = 1);
 
 }  // namespace nenrin

@@ -11,11 +11,15 @@
 
 namespace nenrin {
 
-void parallelTiles(size_t tileCount, int threads, const std::function<void(size_t)>& body) {
-    // More threads than cores cannot run (TBB would print a warning through -q): at most the
-    // cores. The result does not depend on the count.
+int workerThreads(int threads) {
+    // More threads than cores cannot run (TBB would print a warning through -q).
     const int cores = tbb::info::default_concurrency();
-    tbb::task_arena arena(threads > 0 ? std::min(threads, cores) : tbb::task_arena::automatic);
+    return threads > 0 ? std::min(threads, cores) : cores;
+}
+
+void parallelTiles(size_t tileCount, int threads, const std::function<void(size_t)>& body) {
+    // The result does not depend on the count.
+    tbb::task_arena arena(workerThreads(threads));
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, tileCount, 1),
                           [&](const tbb::blocked_range<size_t>& r) {

@@ -96,7 +96,7 @@ RenderJobReport runRenderJob(const RenderJob& job) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         metadata["denoised"] = denoiseDescription(denoise);
     }
-    writeFilmExr(film, job.output, metadata);
+    writeFilmExr(film, job.output, metadata, job.threads);
     report.written.push_back(job.output);
     if (!job.png.empty()) {
         writePreviewPng(job.png, film.rgb, film.width, film.height);
