@@ -26,9 +26,21 @@ void writeFloatExr(const std::string& finalPath, const std::string& writePath, i
                    int height, const std::vector<std::string>& channels, const float* pixels,
                    const std::map<std::string, std::string>& metadata, RowBand band,
                    ExrValues values, int threads) {
+    std::vector<ExrChannel> planes;
+    for (size_t c = 0; c < channels.size(); ++c)
+        planes.push_back({channels[c], pixels + c, channels.size()});
+    writeFloatExrChannels(finalPath, writePath, width, height, planes, metadata, band, values,
+                          threads);
+}
+
+void writeFloatExrChannels(const std::string& finalPath, const std::string& writePath, int width,
+                           int height, const std::vector<ExrChannel>& channels,
+                           const std::map<std::string, std::string>& metadata, RowBand band,
+                           ExrValues values, int threads) {
     const int end = band.end < 0 ? height : band.end;
-    requireFiniteOutput(pixels, size_t(end - band.begin) * width * channels.size(), channels, width,
-                        band.begin, finalPath);
+    const size_t samples = size_t(end - band.begin) * width;
+    for (const ExrChannel& c : channels)
+        requireFiniteChannel(c.values, c.stride, samples, c.name, width, band.begin, finalPath);
     const Imath::Box2i display({0, 0}, {width - 1, height - 1});
     const Imath::Box2i data({0, band.begin}, {width - 1, end - 1});
     // zip at level 1: nearly the size of the default level, at a fraction of the time.
@@ -42,16 +54,16 @@ void writeFloatExr(const std::string& finalPath, const std::string& writePath, i
     for (const auto& [key, value] : metadata)
         header.insert("nenrin:" + key, Imf::StringAttribute(value));
     Imf::FrameBuffer frame;
-    const size_t stride = channels.size() * sizeof(float);
-    // The frame buffer is addressed by absolute pixel position: the band's first row is
-    // pixels[0], so the base pointer is moved back by band.begin rows (never dereferenced).
-    const char* base = reinterpret_cast<const char*>(pixels) -
-                       static_cast<ptrdiff_t>(band.begin) * width * static_cast<ptrdiff_t>(stride);
-    for (size_t c = 0; c < channels.size(); ++c) {
-        header.channels().insert(channels[c], Imf::Channel(Imf::FLOAT));
-        frame.insert(channels[c],
-                     Imf::Slice(Imf::FLOAT, const_cast<char*>(base + c * sizeof(float)), stride,
-                                stride * width));
+    for (const ExrChannel& c : channels) {
+        const size_t stride = c.stride * sizeof(float);
+        // The frame buffer is addressed by absolute pixel position: the band's first row is
+        // values[0], so the base pointer is moved back by band.begin rows (never dereferenced).
+        const char* base =
+            reinterpret_cast<const char*>(c.values) -
+            static_cast<ptrdiff_t>(band.begin) * width * static_cast<ptrdiff_t>(stride);
+        header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+        frame.insert(c.name,
+                     Imf::Slice(Imf::FLOAT, const_cast<char*>(base), stride, stride * width));
     }
     // Our own stream, so that the last writes (the line offsets, written when the file object
     // is destroyed, where OpenEXR cannot report an error) are checked when it is closed.

@@ -26,6 +26,22 @@ void writeFloatExr(const std::string& finalPath, const std::string& writePath, i
                    const std::map<std::string, std::string>& metadata, RowBand band = {},
                    ExrValues values = ExrValues::SceneLinear, int threads = 1);
 
+/// One channel of an image in memory: sample i (row-major, the band's rows only) at
+/// values[i * stride].
+struct ExrChannel {
+    std::string name;
+    const float* values;
+    size_t stride = 1;
+};
+
+/// writeFloatExr for channels that lie apart in memory (a film's planes): written from where
+/// they are, without an interleaved copy. The channels are checked for non-finite values one
+/// after the other.
+void writeFloatExrChannels(const std::string& finalPath, const std::string& writePath, int width,
+                           int height, const std::vector<ExrChannel>& channels,
+                           const std::map<std::string, std::string>& metadata, RowBand band = {},
+                           ExrValues values = ExrValues::SceneLinear, int threads = 1);
+
 /// An EXR read back whole: its data window, channels, pixels and nenrin:KEY metadata.
 struct FloatExr {
     int width = 0, height = 0;  ///< the display window (the frame); its origin must be 0, 0

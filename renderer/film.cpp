@@ -71,29 +71,27 @@ Film filmFromExr(const FloatExr& image, const std::string& file) {
 
 void writeFilmExr(const Film& film, const std::string& path,
                   const std::map<std::string, std::string>& metadata, int threads) {
+    // Straight from the film's planes: an interleaved copy of a 4K frame's 15 channels would
+    // be another half gigabyte.
     const std::vector<std::string> names = filmChannelNames(!film.samples.empty());
-    const int channels = static_cast<int>(names.size());
-    const size_t n = size_t(film.width) * film.rows;
-    std::vector<float> pixels(n * channels);
-    for (size_t i = 0; i < n; ++i) {
-        float* p = &pixels[i * channels];
-        for (int c = 0; c < 3; ++c) {
-            p[c] = film.rgb[3 * i + c];
-            p[4 + c] = film.albedo[3 * i + c];
-            p[7 + c] = film.normal[3 * i + c];
-        }
-        p[3] = film.alpha[i];
-        p[10] = film.depth[i];
-        p[11] = film.growthTime[i];
-        p[12] = film.knot[i];
-        p[13] = film.lamella[i];
-        p[14] = film.variance[i];
-        if (!film.samples.empty()) p[15] = film.samples[i];
-    }
+    struct Plane {
+        const float* values;
+        size_t stride;
+    };
+    const std::vector<Plane> planes = {
+        {film.rgb.data(), 3},        {film.rgb.data() + 1, 3}, {film.rgb.data() + 2, 3},
+        {film.alpha.data(), 1},      {film.albedo.data(), 3},  {film.albedo.data() + 1, 3},
+        {film.albedo.data() + 2, 3}, {film.normal.data(), 3},  {film.normal.data() + 1, 3},
+        {film.normal.data() + 2, 3}, {film.depth.data(), 1},   {film.growthTime.data(), 1},
+        {film.knot.data(), 1},       {film.lamella.data(), 1}, {film.variance.data(), 1},
+        {film.samples.data(), 1}};
+    std::vector<ExrChannel> channels;
+    for (size_t c = 0; c < names.size(); ++c)
+        channels.push_back({names[c], planes[c].values, planes[c].stride});
     AtomicOutput out(path);
-    writeFloatExr(path, out.temporaryPath(), film.width, film.height, names, pixels.data(),
-                  metadata, {film.firstRow, film.firstRow + film.rows}, ExrValues::SceneLinear,
-                  workerThreads(threads));
+    writeFloatExrChannels(path, out.temporaryPath(), film.width, film.height, channels, metadata,
+                          {film.firstRow, film.firstRow + film.rows}, ExrValues::SceneLinear,
+                          workerThreads(threads));
     out.commit();
 }
 

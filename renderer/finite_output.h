@@ -16,4 +16,9 @@ void requireFiniteOutput(const float* values, size_t count,
                          const std::vector<std::string>& channels, int width, int firstRow,
                          const std::string& path);
 
+/// The same for one channel of `pixels` samples, sample i at values[i * stride].
+void requireFiniteChannel(const float* values, size_t stride, size_t pixels,
+                          const std::string& channel, int width, int firstRow,
+                          const std::string& path);
+
 }  // namespace nenrin

@@ -1,5 +1,6 @@
 // renderer/exr_file: an EXR written with its blocks compressed on several threads is the same
-// file, byte for byte, as one written on one thread, and reads back as written.
+// file, byte for byte, as one written on one thread, and reads back as written; channels
+// written from separate planes make the same file as the same values interleaved.
 
 #include "renderer/exr_file.h"
 
@@ -8,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,6 +47,45 @@ TEST(ExrFile, ThreadsCompressTheSameBytes) {
     ASSERT_GT(files[0].size(), 1000u);
     EXPECT_EQ(files[1], files[0]);
     EXPECT_EQ(files[2], files[0]);
+}
+
+TEST(ExrFile, ChannelsApartInMemoryWriteTheSameFileAsInterleaved) {
+    // A film's layout: R, G, B interleaved in one plane, Z in another; a band of rows 5..44.
+    const int width = 31, height = 60, first = 5, rows = 40;
+    const size_t n = size_t(width) * rows;
+    std::vector<float> rgb(3 * n), z(n), interleaved(4 * n);
+    for (size_t i = 0; i < n; ++i) {
+        for (int c = 0; c < 3; ++c) rgb[3 * i + c] = float(uniform01(c, i));
+        z[i] = float(i % 97) * 0.25f;
+        for (int c = 0; c < 3; ++c) interleaved[4 * i + c] = rgb[3 * i + c];
+        interleaved[4 * i + 3] = z[i];
+    }
+    const auto dir = std::filesystem::temp_directory_path();
+    const auto a = dir / "nenrin-exr-interleaved.exr", b = dir / "nenrin-exr-planes.exr";
+    const RowBand band{first, first + rows};
+    writeFloatExr(a.string(), a.string(), width, height, {"R", "G", "B", "Z"}, interleaved.data(),
+                  {}, band);
+    writeFloatExrChannels(b.string(), b.string(), width, height,
+                          {{"R", rgb.data(), 3},
+                           {"G", rgb.data() + 1, 3},
+                           {"B", rgb.data() + 2, 3},
+                           {"Z", z.data(), 1}},
+                          {}, band);
+    EXPECT_EQ(fileBytes(b), fileBytes(a));
+    EXPECT_GT(fileBytes(a).size(), 1000u);
+    // A non-finite value in a plane is named by its pixel and channel, and nothing is written.
+    std::filesystem::remove(b);
+    rgb[3 * (2 * width + 7) + 1] = std::numeric_limits<float>::infinity();
+    try {
+        writeFloatExrChannels(b.string(), b.string(), width, height,
+                              {{"R", rgb.data(), 3}, {"G", rgb.data() + 1, 3}}, {}, band);
+        ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("sample (7, 7), channel G is inf"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(b));
+    std::filesystem::remove(a);
 }
 
 }  // namespace
