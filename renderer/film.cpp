@@ -35,12 +35,33 @@ std::vector<std::string> filmChannelNames(bool adaptive) {
 std::string filmChannelDescription(bool adaptive) {
     std::string text =
         "R,G,B: scene-linear radiance; A: coverage; albedo; N: world normal; Z: depth along "
-        "the view axis (m); T: growth time (years); knot: 0..1; lamella: board id or -1; variance: "
-        "of the pixel's mean "
-        "luminance";
+        "the view axis (m); T: growth time (years); knot: 0..1; lamella: board id or -1; "
+        "variance: of the pixel's mean luminance";
     if (adaptive) text += "; samples: samples the pixel took";
     return text;
 }
+
+namespace {
+
+/// Where each channel of filmChannelNames(true) lives in a film: its first value and the step
+/// to the next pixel's. The one statement of the channel layout, for reading and writing.
+template <class F>
+auto filmPlanes(F& film) {
+    using Pointer = decltype(film.rgb.data());
+    struct Plane {
+        Pointer values;
+        size_t stride;
+    };
+    return std::vector<Plane>{
+        {film.rgb.data(), 3},        {film.rgb.data() + 1, 3}, {film.rgb.data() + 2, 3},
+        {film.alpha.data(), 1},      {film.albedo.data(), 3},  {film.albedo.data() + 1, 3},
+        {film.albedo.data() + 2, 3}, {film.normal.data(), 3},  {film.normal.data() + 1, 3},
+        {film.normal.data() + 2, 3}, {film.depth.data(), 1},   {film.growthTime.data(), 1},
+        {film.knot.data(), 1},       {film.lamella.data(), 1}, {film.variance.data(), 1},
+        {film.samples.data(), 1}};
+}
+
+}  // namespace
 
 Film filmFromExr(const FloatExr& image, const std::string& file) {
     Film film;
@@ -51,21 +72,10 @@ Film filmFromExr(const FloatExr& image, const std::string& file) {
         throw InputError(file, "channels",
                          "not the channels of a nenrin render (docs/render.md#outputs)");
     if (adaptive) film.samples.assign(film.alpha.size(), 0);
-    for (size_t i = 0; i < film.alpha.size(); ++i) {
-        const float* p = &image.pixels[i * channels];
-        for (int c = 0; c < 3; ++c) {
-            film.rgb[3 * i + c] = p[c];
-            film.albedo[3 * i + c] = p[4 + c];
-            film.normal[3 * i + c] = p[7 + c];
-        }
-        film.alpha[i] = p[3];
-        film.depth[i] = p[10];
-        film.growthTime[i] = p[11];
-        film.knot[i] = p[12];
-        film.lamella[i] = p[13];
-        film.variance[i] = p[14];
-        if (adaptive) film.samples[i] = p[15];
-    }
+    const auto planes = filmPlanes(film);
+    for (size_t c = 0; c < channels; ++c)
+        for (size_t i = 0; i < film.alpha.size(); ++i)
+            planes[c].values[i * planes[c].stride] = image.pixels[i * channels + c];
     return film;
 }
 
@@ -74,17 +84,7 @@ void writeFilmExr(const Film& film, const std::string& path,
     // Straight from the film's planes: an interleaved copy of a 4K frame's 15 channels would
     // be another half gigabyte.
     const std::vector<std::string> names = filmChannelNames(!film.samples.empty());
-    struct Plane {
-        const float* values;
-        size_t stride;
-    };
-    const std::vector<Plane> planes = {
-        {film.rgb.data(), 3},        {film.rgb.data() + 1, 3}, {film.rgb.data() + 2, 3},
-        {film.alpha.data(), 1},      {film.albedo.data(), 3},  {film.albedo.data() + 1, 3},
-        {film.albedo.data() + 2, 3}, {film.normal.data(), 3},  {film.normal.data() + 1, 3},
-        {film.normal.data() + 2, 3}, {film.depth.data(), 1},   {film.growthTime.data(), 1},
-        {film.knot.data(), 1},       {film.lamella.data(), 1}, {film.variance.data(), 1},
-        {film.samples.data(), 1}};
+    const auto planes = filmPlanes(film);
     std::vector<ExrChannel> channels;
     for (size_t c = 0; c < names.size(); ++c)
         channels.push_back({names[c], planes[c].values, planes[c].stride});

@@ -1,14 +1,11 @@
 #include "renderer/denoise/atrous_denoiser.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "grain/rgb.h"
+#include "renderer/parallel_tiles.h"
 
 namespace nenrin {
 
@@ -172,20 +169,14 @@ void denoiseFilm(Film& film, const DenoiseOptions& options) {
         const double a = luminance(&g.demodulate[3 * i]);
         variance[i] = float(film.variance[i] / (a * a));
     }
-    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-        for (int k = 0; k < options.passes; ++k) {
-            const Pass pass(g, 1 << k, light, variance, options);
-            tbb::parallel_for(tbb::blocked_range<int>(0, g.height),
-                              [&](const tbb::blocked_range<int>& rows) {
-                                  for (int y = rows.begin(); y < rows.end(); ++y)
-                                      for (int x = 0; x < g.width; ++x)
-                                          pass.pixel(x, y, lightNext, varianceNext);
-                              });
-            light.swap(lightNext);
-            variance.swap(varianceNext);
-        }
-    });
+    for (int k = 0; k < options.passes; ++k) {
+        const Pass pass(g, 1 << k, light, variance, options);
+        parallelTiles(size_t(g.height), options.threads, [&](size_t y) {
+            for (int x = 0; x < g.width; ++x) pass.pixel(x, int(y), lightNext, varianceNext);
+        });
+        light.swap(lightNext);
+        variance.swap(varianceNext);
+    }
     for (size_t i = 0; i < n; ++i)
         if (g.hit[i])
             for (int c = 0; c < 3; ++c)
