@@ -11,6 +11,7 @@
 #include "compare_command.h"
 #include "denoise_command.h"
 #include "farm_command.h"
+#include "fit_command.h"
 #include "furniture_command.h"
 #include "grain_command.h"
 #include "pov_command.h"
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
     nenrin::addStandCommands(app);
     nenrin::addStatsCommand(app);
     nenrin::addFurnitureCommand(app);
+    nenrin::addFitCommand(app);
     try {
         // Every output of the command reaches its final name only if the command succeeds.
         nenrin::OutputTransaction outputs;

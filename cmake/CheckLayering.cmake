@@ -25,6 +25,7 @@ set(sources_of_library
     "renderer/stats:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "renderer/image_error:"
     "renderer/denoise:renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
+    "fit:renderer/bake,renderer/stats,renderer,renderer/products,renderer/geometry,shader,grain,skeleton,util"
     "cli:*")
 
 set(libraries "")

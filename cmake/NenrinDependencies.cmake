@@ -11,6 +11,8 @@ find_package(CLI11 CONFIG REQUIRED)
 find_package(fmt CONFIG REQUIRED)
 find_package(tinyobjloader CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
+# The fit from photographs (fit/): least squares.
+find_package(Ceres CONFIG REQUIRED)
 
 # Quirk: OpenColorIO's CMake config computes an empty prefix on Debian; pkg-config works.
 find_package(PkgConfig REQUIRED)

@@ -41,12 +41,8 @@ ColourStrip analyseColourStrip(const std::vector<Rgb>& columns, const std::strin
                          fmt::format("{} columns: expected a strip at least 32 pixels "
                                      "long, pith to bark",
                                      columns.size()));
-    std::vector<Lab> lab;
     std::vector<double> L;
-    for (const Rgb& c : columns) {
-        lab.push_back(labFromLinearSrgb(c));
-        L.push_back(lab.back().L);
-    }
+    for (const Rgb& c : columns) L.push_back(labFromLinearSrgb(c).L);
     const std::vector<double> smooth = boxSmooth(L, 1);
     const std::vector<double> trend = boxSmooth(L, 20);
     // Late-wood lines: local minima of lightness clearly below the local level.
@@ -70,7 +66,7 @@ ColourStrip analyseColourStrip(const std::vector<Rgb>& columns, const std::strin
         if (lowest && (minima.empty() || i - minima.back() > window)) minima.push_back(i);
     }
     // A ring starts where the late wood ends: the steepest rise after each line.
-    ColourStrip s;
+    std::vector<int> boundaries;
     for (size_t k = 0; k < minima.size(); ++k) {
         int from = minima[k];
         int to = k + 1 < minima.size() ? (minima[k] + minima[k + 1]) / 2
@@ -80,13 +76,26 @@ ColourStrip analyseColourStrip(const std::vector<Rgb>& columns, const std::strin
         for (int i = from; i < to && i + 1 < int(L.size()); ++i)
             if (smooth[size_t(i + 1)] - smooth[size_t(i)] > rise)
                 rise = smooth[size_t(i + 1)] - smooth[size_t(i)], best = i + 1;
-        s.boundaries.push_back(best);
+        boundaries.push_back(best);
     }
-    if (s.boundaries.size() < 4)
+    if (boundaries.size() < 4)
         throw InputError(name, "",
                          fmt::format("found {} late-wood lines: expected a strip across at "
                                      "least 3 rings, pith on the left",
-                                     s.boundaries.size()));
+                                     boundaries.size()));
+    return colourStripFromBoundaries(columns, std::move(boundaries));
+}
+
+ColourStrip colourStripFromBoundaries(const std::vector<Rgb>& columns,
+                                      std::vector<int> boundaries) {
+    std::vector<Lab> lab;
+    std::vector<double> L;
+    for (const Rgb& c : columns) {
+        lab.push_back(labFromLinearSrgb(c));
+        L.push_back(lab.back().L);
+    }
+    ColourStrip s;
+    s.boundaries = std::move(boundaries);
     s.rings = int(s.boundaries.size()) - 1;
     const int bins = 33;
     s.lateWoodProfile.assign(bins, 0);

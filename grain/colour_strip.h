@@ -30,4 +30,8 @@ struct ColourStrip {
 /// Throws InputError (naming `name`) when the strip is too short or shows fewer than 3 rings.
 ColourStrip analyseColourStrip(const std::vector<Rgb>& columns, const std::string& name);
 
+/// The same figures for rings found otherwise: `boundaries` (at least 2, increasing, within
+/// the strip) are the columns where each ring's early wood begins.
+ColourStrip colourStripFromBoundaries(const std::vector<Rgb>& columns, std::vector<int> boundaries);
+
 }  // namespace nenrin

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "util/json_reader.h"
 #include "util/limits.h"
 
@@ -27,6 +29,35 @@ nlohmann::json endGrainJson(const ColourParams& c) {
                         {"contrast", c.endGrainContrast}};
     if (c.endGrainTint.r >= 0) j["tint"] = rgbJson(c.endGrainTint);
     return j;
+}
+
+/// The measured displacement lattice (docs/grain-format.md, "warp").
+void readWarp(JsonReader& r, WarpParams& w) {
+    w.origin = r.requireVec3("origin");
+    w.step = r.requireVec3("step");
+    for (double s : {w.step.x, w.step.y, w.step.z})
+        if (!(s >= kMinWarpStep))
+            throw r.error("step", "expected lattice steps of at least 0.1 mm (metres)");
+    const std::vector<double> size = r.numberList("size");
+    if (size.size() != 3)
+        throw r.error("size", "expected the node counts [nx, ny, nz], each 2 to 64");
+    int n[3];
+    for (int i = 0; i < 3; ++i) {
+        if (!(size[size_t(i)] >= 2 && size[size_t(i)] <= 64 &&
+              size[size_t(i)] == std::floor(size[size_t(i)])))
+            throw r.error("size", "expected the node counts [nx, ny, nz], each 2 to 64");
+        n[i] = int(size[size_t(i)]);
+    }
+    w.nx = n[0], w.ny = n[1], w.nz = n[2];
+    w.displacement = r.requireVec3List("displacement");
+    const size_t nodes = size_t(w.nx) * w.ny * w.nz;
+    if (w.displacement.size() != nodes)
+        throw r.error("displacement", fmt::format("expected {} vectors (nx ny nz), found {}", nodes,
+                                                  w.displacement.size()));
+    for (const Vec3& d : w.displacement)
+        if (!(length(d) <= kMaxWarp))
+            throw r.error("displacement", "expected displacements of at most 5 cm (metres)");
+    r.finish();
 }
 
 /// The growth terms' parameters: the junction blend (eq. 5), direction (eq. 7), age (eq. 8),
@@ -71,6 +102,7 @@ void readGrowthTerms(JsonReader& root, GrainParams& g) {
         g.wander.seed = static_cast<uint64_t>(w->integer("seed", 1, 0, 1LL << 53));
         w->finish();
     }
+    if (auto w = root.object("warp")) readWarp(*w, g.warp);
 }
 
 /// The stochastic ring-width model (docs/grain-format.md, "rings").
@@ -243,7 +275,7 @@ namespace {
 
 /// The "colour" object of a grain file.
 nlohmann::json colourJson(const ColourParams& c) {
-    return {
+    nlohmann::json j = {
         {"early_wood", rgbJson(c.earlyWood)},
         {"late_wood", rgbJson(c.lateWood)},
         {"late_wood_exponent", c.lateWoodExponent},
@@ -271,6 +303,9 @@ nlohmann::json colourJson(const ColourParams& c) {
           {"tint", rgbJson(c.knotTint)},
           {"dead_tint", rgbJson(c.deadKnotTint)}}},
         {"end_grain", endGrainJson(c)}};
+    // No measured profile: the key left out (a file cannot hold an empty one).
+    if (c.lateWoodProfile.empty()) j.erase("late_wood_profile");
+    return j;
 }
 
 /// The "anatomy" object of a grain file.
@@ -350,6 +385,15 @@ nlohmann::json grainToJson(const GrainParams& g) {
                       {"replace_recorded", m.replaceRecorded}};
     }
     if (g.anatomy.enabled) j["anatomy"] = anatomyJson(g.anatomy);
+    if (g.warp.enabled()) {
+        const WarpParams& w = g.warp;
+        nlohmann::json d = nlohmann::json::array();
+        for (const Vec3& v : w.displacement) d.push_back({v.x, v.y, v.z});
+        j["warp"] = {{"origin", {w.origin.x, w.origin.y, w.origin.z}},
+                     {"step", {w.step.x, w.step.y, w.step.z}},
+                     {"size", {w.nx, w.ny, w.nz}},
+                     {"displacement", d}};
+    }
     return j;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "grain/anatomy_params.h"
+#include "grain/point_warp.h"
 #include "grain/rgb.h"
 #include "grain/ring_model.h"
 #include "grain/ring_wander.h"
@@ -110,6 +111,8 @@ struct GrainParams {
     SwayParams sway;
     /// Ring-boundary waviness at the centimetre scale ("wander"; off by default).
     WanderParams wander;
+    /// A measured displacement of the sample points ("warp": nenrin fit's; off by default).
+    WarpParams warp;
     ColourParams colour;
     /// Yearly ring widths for skeletons that record none ("rings"; off = constant Sb).
     RingModelParams rings;

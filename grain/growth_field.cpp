@@ -26,7 +26,8 @@ constexpr size_t kGroupCullAbove = 64;
 /// The sway pass (section 4.5, main method): every point in the field's domain, displaced;
 /// a run of `stencil` points by its first point's displacement (see evaluateBatch).
 std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, const SwayWaves& sway,
-                                 const WanderParams& wander, std::vector<Vec3>& swayed) {
+                                 const WanderParams& wander, const WarpParams& warp,
+                                 std::vector<Vec3>& swayed) {
     // The field's domain: beyond it squared distances overflow and no segment would be
     // nearest (once a crash). Farther points are evaluated as if on its edge, where the answer
     // is long settled (bark or beyond); NaN has no answer. Callers bound their inputs where
@@ -50,8 +51,8 @@ std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, co
             swayed[i] = p + swayDisplacement(p, sway) + ringWander(p);
         }
     } else {
-        // The wander is the rings' own small-scale shape: every point of a stencil gets its
-        // own, so grad T (and the fibres) follow it.
+        // The wander (and the warp below) are the rings' own small-scale shape: every point of
+        // a stencil gets its own, so grad T (and the fibres) follow it.
         for (size_t i = 0; i < n; i += stencil) {
             const Vec3 d = swayDisplacement(inDomain(input[i]), sway);
             for (size_t j = i; j < i + stencil; ++j) {
@@ -60,6 +61,10 @@ std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, co
             }
         }
     }
+    // A measured warp (nenrin fit's) on top, where there is one: without, not even a zero is
+    // added (-0 + 0 is +0, and the sign of a zero reaches atan2).
+    if (warp.enabled())
+        for (size_t i = 0; i < n; ++i) swayed[i] = swayed[i] + pointWarp(inDomain(input[i]), warp);
     return swayed;
 }
 
@@ -133,7 +138,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     if (n == 0) return;
     GrowthBuffers& buffers = scratch.buffers();
     const std::span<const Vec3> points =
-        swayPoints(input, stencil, sway_, params_.wander, buffers.points);
+        swayPoints(input, stencil, sway_, params_.wander, params_.warp, buffers.points);
     const PointBox batch = boxOf(points);
     const double maxTrunkTime = evaluateTrunk(points, batch, out, buffers.trunk);
     if (index_->branches().size() == 0) return;

@@ -27,6 +27,8 @@ inline constexpr double kMinBranchLength = 1e-3;      ///< m
 inline constexpr double kMinDeathTime = 0.01;         ///< years
 inline constexpr double kMinSwayWavelength = 0.01;    ///< m: sway bends rings over centimetres+
 inline constexpr double kMinWanderWavelength = 1e-3;  ///< m: rings wander over millimetres+
+inline constexpr double kMinWarpStep = 1e-4;          ///< m: a warp lattice's step (grain "warp")
+inline constexpr double kMaxWarp = 0.05;              ///< m: its largest displacement
 inline constexpr double kMinCellSize = 1e-6;          ///< m: of the micro-structure's cells
 
 /// True if a width x height image is within kMaxImageSide and kMaxImagePixels.

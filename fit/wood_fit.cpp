@@ -1,0 +1,285 @@
+#include "fit/wood_fit.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "grain/grain_params.h"
+#include "grain/grown_tree.h"
+#include "renderer/bake/bake_specs.h"
+#include "renderer/bake/grid_bake.h"
+#include "renderer/stats/image_statistics.h"
+#include "renderer/stats/stats_image.h"
+#include "shader/wood_shader.h"
+#include "util/input_error.h"
+#include "util/json_parse.h"
+#include "util/progress.h"
+
+namespace nenrin {
+
+namespace {
+
+/// Past this misfit the rings are not cylinders around one line (a knot, a crotch, much
+/// figure): a warning; past the second, nothing in the photos is rings: an error.
+constexpr double kPoorMisfitDeg = 20, kNoRingsMisfitDeg = 30;
+/// Past this distance the rings are nearly straight: their curvature barely places the pith.
+constexpr double kFarPith = 1.0;
+
+nlohmann::json rgbJson(const Rgb& c) {
+    auto r = [](double v) { return std::round(v * 1e4) / 1e4; };
+    return {r(c.r), r(c.g), r(c.b)};
+}
+
+double rounded(double v, double unit) { return std::round(v / unit) * unit; }
+
+/// A straight trunk along the pith line, far past the sample both ways, born at once (rings
+/// are then cylinders: T depends on the distance from the line only), with the ring series.
+Skeleton pithSkeleton(const PithLine& pith, const RadialRings& profile) {
+    const double reach = 1 + profile.outerRadius;
+    Skeleton s;
+    s.addTrunk({pith.point - pith.direction * reach, pith.point + pith.direction * reach}, {0, 0});
+    s.setRingWidths(ringSeries(profile.boundaries, profile.outerRadius));
+    return s;
+}
+
+nlohmann::json fittedGrain(const std::string& base, const Sample& sample,
+                           const RadialRings& profile) {
+    nlohmann::json grain = base.empty() ? nlohmann::json::object() : parseJsonFile(base);
+    if (!grain.is_object()) throw InputError(base, "", "expected a grain file (a JSON object)");
+    parseGrain(grain, base);  // a valid grain file, or the error names it
+    // The ring geometry is the fit's: the skeleton's line and ring series and the warp. The
+    // base's own ring shapes (sway, wander, eccentric growth, ageing, taper, a ring-width
+    // model) would move the rings off the photographed ones.
+    for (const char* key : {"sway", "wander", "direction", "age", "taper", "rings", "warp"})
+        grain.erase(key);
+    const ColourStrip& s = profile.strip;
+    const std::vector<double>& b = profile.boundaries;
+    grain["radial_speed"] = rounded((b.back() - b.front()) / double(b.size() - 1), 1e-6);
+    nlohmann::json& colour = grain["colour"];
+    if (!colour.is_object()) colour = nlohmann::json::object();
+    colour["early_wood"] = rgbJson(s.earlyWood);
+    colour["late_wood"] = rgbJson(s.lateWood);
+    nlohmann::json shape = nlohmann::json::array();
+    for (double e : s.lateWoodProfile) shape.push_back(rounded(e, 1e-3));
+    colour["late_wood_profile"] = shape;
+    // A sample a few centimetres across is heartwood or sapwood, rarely both: its colour is
+    // the early and late wood above.
+    colour["heartwood"] = {{"enabled", false}};
+    grain["reference"] = {{"fit", sample.file},
+                          {"base", base},
+                          {"rings", s.rings},
+                          {"ring_width_cv", s.widthStatistics.cv},
+                          {"early_wood_lab", {s.early.L, s.early.a, s.early.b}},
+                          {"late_wood_lab", {s.late.L, s.late.a, s.late.b}}};
+    return grain;
+}
+
+/// Rounds of colour calibration at most.
+constexpr int kColourRounds = 3;
+
+/// The fitted faces' photographed mean colour over their baked one, per channel (linear).
+Rgb colourRatio(const std::vector<FaceFigures>& faces) {
+    double photo[3] = {0, 0, 0}, baked[3] = {0, 0, 0};
+    for (const FaceFigures& f : faces) {
+        if (f.heldOut) continue;
+        for (int c = 0; c < 3; ++c)
+            for (int y = 0; y < f.bake.height; ++y)
+                for (int x = 0; x < f.bake.width; ++x) {
+                    photo[c] += f.photo[size_t(c)].at(x, y);
+                    baked[c] += f.bake.at(x, y)[c];
+                }
+    }
+    auto ratio = [&](int c) { return baked[c] > 0 && photo[c] > 0 ? photo[c] / baked[c] : 1.0; };
+    return {ratio(0), ratio(1), ratio(2)};
+}
+
+/// The face baked through the fitted wood at the statistics' scale, measured against its
+/// photograph.
+FaceFigures measureFace(const WoodShader& shader, const Skeleton& skeleton, const FacePhoto& photo,
+                        const FitOptions& options) {
+    const SampleFace& face = *photo.face;
+    FaceFigures f;
+    f.name = face.name;
+    f.heldOut = std::find(options.heldOut.begin(), options.heldOut.end(), face.name) !=
+                options.heldOut.end();
+    SliceSpec spec;
+    spec.cut = PlaneCut{face.origin, face.right, face.up};
+    spec.resX = spec.resY = kStatsSize;
+    f.bake = sliceGrid(skeleton, spec);
+    bakeGrid(shader, f.bake, {options.threads, true, "Baking " + face.name});
+    Plane growthTime(kStatsSize, kStatsSize);
+    std::array<Plane, 3> rgb;
+    for (Plane& p : rgb) p = Plane(kStatsSize, kStatsSize);
+    for (int y = 0; y < kStatsSize; ++y)
+        for (int x = 0; x < kStatsSize; ++x) {
+            const float* v = f.bake.at(x, y);
+            for (int c = 0; c < 3; ++c) rgb[size_t(c)].at(x, y) = std::max(0.0f, v[c]);
+            growthTime.at(x, y) = v[4];
+        }
+    const RingAgreement rings = ringAgreement(photo.lightness, growthTime, face.image);
+    f.ringMedianDeg = rings.medianDeg;
+    f.ringWithin15 = rings.within15;
+    const ImageStatistics baked = roundedAsReported(imageStatistics(labPlanes(rgb)));
+    const ImageStatistics photographed =
+        roundedAsReported(imageStatistics(labPlanes(photo.linear)));
+    const StatisticsAgainst against = statisticsAgainst(baked, photographed, face.image);
+    f.dE = against.dE;
+    f.fineRatio = against.fineRatio;
+    f.midRatio = against.midRatio;
+    f.photo = photo.linear;
+    return f;
+}
+
+/// Bakes every face of the grain; then, `rounds` times at most, scales its early and late wood
+/// colours until the bakes of the fitted faces have the photos' mean colour (the strip's
+/// colours are the photo's; the bake adds the finish and the anatomy's texture, which darken
+/// it). Returns the last bakes.
+std::vector<FaceFigures> calibrateColours(nlohmann::json& grain, const Skeleton& skeleton,
+                                          const std::vector<FacePhoto>& photos,
+                                          const FitOptions& options, int rounds) {
+    std::vector<FaceFigures> faces;
+    for (int round = 0;; ++round) {
+        const GrownTree tree(Skeleton(skeleton), parseGrain(grain, "the fitted grain"));
+        const WoodShader shader(tree.field());
+        faces.clear();
+        for (const FacePhoto& p : photos)
+            faces.push_back(measureFace(shader, skeleton, p, options));
+        const Rgb ratio = colourRatio(faces);
+        const double off = std::max({std::abs(std::log(ratio.r)), std::abs(std::log(ratio.g)),
+                                     std::abs(std::log(ratio.b))});
+        if (round == rounds || off < 0.005) return faces;
+        for (const char* key : {"early_wood", "late_wood"}) {
+            nlohmann::json& c = grain["colour"][key];
+            c = rgbJson(Rgb{c[0].get<double>() * ratio.r, c[1].get<double>() * ratio.g,
+                            c[2].get<double>() * ratio.b});
+        }
+    }
+}
+
+/// How far the bakes' texture is from the photos': the squared logarithms of the fine and mid
+/// energy ratios, summed over the fitted faces.
+double textureMisfit(const std::vector<FaceFigures>& faces) {
+    double sum = 0;
+    for (const FaceFigures& f : faces) {
+        if (f.heldOut) continue;
+        for (double ratio : {f.fineRatio, f.midRatio})
+            sum += ratio > 0 ? std::pow(std::log(ratio), 2) : 100.0;
+    }
+    return sum;
+}
+
+}  // namespace
+
+WoodFit fitSample(const Sample& sample, const FitOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    for (const std::string& name : options.heldOut)
+        if (std::none_of(sample.faces.begin(), sample.faces.end(),
+                         [&](const SampleFace& f) { return f.name == name; }))
+            throw InputError("command line", "--leave-out",
+                             fmt::format("{} has no face named {}", sample.file, name));
+    std::vector<FacePhoto> photos, fitted;
+    for (const SampleFace& face : sample.faces) photos.push_back(readFacePhoto(face));
+    for (const FacePhoto& p : photos)
+        if (std::find(options.heldOut.begin(), options.heldOut.end(), p.face->name) ==
+            options.heldOut.end())
+            fitted.push_back(p);
+    if (fitted.empty())
+        throw InputError("command line", "--leave-out", "every face is left out: nothing to fit");
+
+    const size_t baseCount = std::max<size_t>(1, options.baseGrains.size());
+    ProgressReporter progress(static_cast<long long>(3 + baseCount), "Fitting", options.quiet);
+    WoodFit fit;
+    fit.pith = focusPithLine(fitPithLine(fitted, sample.file), fitted);
+    progress.advance();
+    if (fit.pith.medianMisfitDeg > kNoRingsMisfitDeg)
+        throw InputError(
+            sample.file, "faces",
+            fmt::format("the photographs show no rings around any line (median misfit {:.0f} "
+                        "degrees; random directions give 45): not wood, or faces placed wrongly",
+                        fit.pith.medianMisfitDeg));
+    if (fit.pith.medianMisfitDeg > kPoorMisfitDeg)
+        fit.warnings.push_back(fmt::format(
+            "the rings are not cylinders around one pith line: median misfit {:.1f} degrees "
+            "(photos of another material, faces that contradict each other, or much figure)",
+            fit.pith.medianMisfitDeg));
+    if (fit.pith.distance > kFarPith)
+        fit.warnings.push_back(fmt::format(
+            "the rings are nearly straight: the pith lies {:.2f} m away and its distance is "
+            "uncertain",
+            fit.pith.distance));
+    fit.warp = fitRingWarp(fitted, fit.pith);
+    progress.advance();
+    fit.profile = measureRadialRings(fitted, fit.pith, fit.warp, sample.file);
+    progress.advance();
+    if (fit.profile.evenRings)
+        fit.warnings.push_back(fmt::format(
+            "no face shows 3 whole rings across it: the rings are taken as even, {:.2f} mm wide "
+            "(their period in the photographs); an end-grain face would measure them",
+            1e3 * (fit.profile.boundaries.back() - fit.profile.boundaries.front()) /
+                double(std::max<size_t>(1, fit.profile.boundaries.size() - 1))));
+    fit.skeleton = pithSkeleton(fit.pith, fit.profile);
+    // The anatomy (the texture) comes from a base grain: of several, the one whose bakes'
+    // fine and mid texture come nearest the photos'.
+    const std::vector<std::string> bases =
+        options.baseGrains.empty() ? std::vector<std::string>{""} : options.baseGrains;
+    double bestScore = std::numeric_limits<double>::infinity();
+    for (const std::string& base : bases) {
+        nlohmann::json grain = fittedGrain(base, sample, fit.profile);
+        GrainParams warped = parseGrain(grain, "the fitted grain");
+        warped.warp = grainWarp(fit.warp, sample.size * -0.55, sample.size * 0.55);
+        grain["warp"] = grainToJson(warped)["warp"];
+        const std::vector<FaceFigures> faces =
+            calibrateColours(grain, fit.skeleton, photos, options, bases.size() > 1 ? 1 : 3);
+        const double score = textureMisfit(faces);
+        if (score < bestScore)
+            bestScore = score, fit.grain = grain, fit.faces = faces, fit.base = base;
+    }
+    if (bases.size() > 1) fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
+    if (options.baseGrains.empty())
+        fit.warnings.push_back(
+            "no base grain (--grain): the bakes carry no anatomy (fibres, pores, rays); give "
+            "species presets to take it from");
+    fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return fit;
+}
+
+nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
+    nlohmann::json faces = nlohmann::json::array();
+    for (const FaceFigures& f : fit.faces)
+        faces.push_back({{"name", f.name},
+                         {"held_out", f.heldOut},
+                         {"ring_median_deg", f.ringMedianDeg},
+                         {"ring_within_15", f.ringWithin15},
+                         {"dE", f.dE},
+                         {"fine_ratio", f.fineRatio},
+                         {"mid_ratio", f.midRatio}});
+    const PithLine& p = fit.pith;
+    nlohmann::json widths = nlohmann::json::array();
+    const std::vector<double>& b = fit.profile.boundaries;
+    for (size_t k = 1; k < b.size(); ++k) widths.push_back(rounded(b[k] - b[k - 1], 1e-6));
+    nlohmann::json boundaries = nlohmann::json::array();
+    for (double r : b) boundaries.push_back(rounded(r, 1e-6));
+    return {{"format", "nenrin-fit"},
+            {"sample", sample.file},
+            {"seconds", rounded(fit.seconds, 0.01)},
+            {"pith",
+             {{"point", {p.point.x, p.point.y, p.point.z}},
+              {"direction", {p.direction.x, p.direction.y, p.direction.z}},
+              {"distance", p.distance},
+              {"median_misfit_deg", rounded(p.medianMisfitDeg, 0.01)}}},
+            {"rings",
+             {{"count", fit.profile.strip.rings},
+              {"measured_on_face", fit.profile.face},
+              {"boundary_radii", boundaries},
+              {"widths", widths},
+              {"inner_radius", fit.profile.innerRadius},
+              {"outer_radius", fit.profile.outerRadius}}},
+            {"anatomy_from", fit.base},
+            {"faces", faces},
+            {"warnings", fit.warnings}};
+}
+
+}  // namespace nenrin

@@ -1,0 +1,62 @@
+#pragma once
+/// `nenrin fit`: a skeleton and a grain file that reproduce a photographed sample (docs/fit.md).
+/// The pith line from the faces' ring directions (pith_fit.h), the ring series and colours
+/// from the faces' colours around it (ring_profile.h), then each face baked through the result
+/// and measured against its photograph.
+
+#include <array>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fit/pith_fit.h"
+#include "fit/radial_rings.h"
+#include "fit/ring_warp.h"
+#include "fit/sample_file.h"
+#include "renderer/bake/baked_grid.h"
+#include "skeleton/skeleton.h"
+
+namespace nenrin {
+
+struct FitOptions {
+    int threads = 0;  ///< 0 = all cores
+    /// Grain files whose keys the fit keeps where it sets none (the anatomy of a species
+    /// preset): of several, the one whose bakes' texture comes nearest the photos'. None:
+    /// nenrin's defaults (no anatomy).
+    std::vector<std::string> baseGrains;
+    /// Faces to leave out of the fit (by name): they are still baked and measured, which is
+    /// how a fit is judged on faces it never saw.
+    std::vector<std::string> heldOut;
+    bool quiet = false;  ///< no progress line on a terminal
+};
+
+/// One face's bake against its photograph.
+struct FaceFigures {
+    std::string name;
+    bool heldOut = false;
+    double ringMedianDeg = 0;  ///< photo-stats --rings: ring normals against grad T
+    double ringWithin15 = 0;   ///< share within 15 degrees
+    double dE = 0, fineRatio = 0, midRatio = 0;
+    BakedGrid bake;              ///< 256 x 256: R, G, B, A, T, knot
+    std::array<Plane, 3> photo;  ///< the photograph at 256 x 256, scene-linear
+};
+
+struct WoodFit {
+    PithLine pith;
+    RingWarp warp;
+    RadialRings profile;
+    Skeleton skeleton;
+    nlohmann::json grain;
+    std::string base;  ///< the base grain chosen ("" for none)
+    std::vector<FaceFigures> faces;
+    std::vector<std::string> warnings;
+    double seconds = 0;
+};
+
+WoodFit fitSample(const Sample& sample, const FitOptions& options);
+
+/// fit.json: the figures, the pith, the ring series and the warnings.
+nlohmann::json fitReport(const Sample& sample, const WoodFit& fit);
+
+}  // namespace nenrin

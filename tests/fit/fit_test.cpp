@@ -1,0 +1,240 @@
+// The fit from photographs (fit/): the sample file, the ring-start detector, and a round trip:
+// six faces baked from a known skeleton and grain, fitted, give back the pith line and the
+// ring widths.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "fit/ring_starts.h"
+#include "fit/sample_file.h"
+#include "fit/wood_fit.h"
+#include "grain/grain_params.h"
+#include "grain/grown_tree.h"
+#include "renderer/bake/bake_specs.h"
+#include "renderer/bake/grid_bake.h"
+#include "renderer/bake/grid_writers.h"
+#include "shader/wood_shader.h"
+#include "util/input_error.h"
+
+namespace nenrin {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kMokume = fs::path(NENRIN_SOURCE_DIR) / "../shared/data/mokume";
+
+/// A fresh folder for one test.
+fs::path scratch(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("nenrin-fit-" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+/// The faces of a 5 cm cube centred at the origin, as the Mokume samples lay them out.
+struct CubeFace {
+    const char* name;
+    Vec3 origin, right, up;
+};
+const CubeFace kCube[6] = {{"A", {-0.025, -0.025, 0.025}, {0.05, 0, 0}, {0, 0.05, 0}},
+                           {"B", {-0.025, 0.025, 0.025}, {0.05, 0, 0}, {0, 0, -0.05}},
+                           {"C", {-0.025, -0.025, -0.025}, {0, 0, 0.05}, {0, 0.05, 0}},
+                           {"D", {-0.025, -0.025, -0.025}, {0.05, 0, 0}, {0, 0, 0.05}},
+                           {"E", {0.025, -0.025, 0.025}, {0, 0, -0.05}, {0, 0.05, 0}},
+                           {"F", {0.025, -0.025, -0.025}, {-0.05, 0, 0}, {0, 0.05, 0}}};
+
+nlohmann::json faceJson(const CubeFace& f, const std::string& image) {
+    return {{"name", f.name},
+            {"image", image},
+            {"origin", {f.origin.x, f.origin.y, f.origin.z}},
+            {"right", {f.right.x, f.right.y, f.right.z}},
+            {"up", {f.up.x, f.up.y, f.up.z}}};
+}
+
+void writeJson(const fs::path& path, const nlohmann::json& j) { std::ofstream(path) << j.dump(1); }
+
+// ---- the sample file ----
+
+TEST(SampleFile, ReadsTheMokumeCubes) {
+    const Sample s = loadSampleFile((kMokume / "H11/sample.json").string());
+    ASSERT_EQ(s.faces.size(), 6u);
+    EXPECT_EQ(s.faces[2].name, "C");
+    EXPECT_TRUE(fs::exists(s.faces[2].image));
+    ASSERT_TRUE(s.faces[2].rings.has_value());
+    // The README's convention: the bottom-left corner is `origin`, the top-right origin +
+    // right + up; right x up points out of the cube.
+    const Vec3 topRight = s.faces[0].at(1, 0);
+    EXPECT_NEAR(topRight.x, 0.025, 1e-12);
+    EXPECT_NEAR(topRight.y, 0.025, 1e-12);
+    EXPECT_NEAR(s.faces[0].normal().z, 1, 1e-12);
+    EXPECT_NEAR(s.faces[1].normal().y, 1, 1e-12);  // B: y = +25 mm
+}
+
+TEST(SampleFile, NamesTheFileAndPlaceOfEachMistake) {
+    const fs::path dir = scratch("sample-errors");
+    const std::string image = (kMokume / "H11/A_col.png").string();
+    auto expectError = [&](const nlohmann::json& j, const std::string& where,
+                           const std::string& what) {
+        writeJson(dir / "s.json", j);
+        try {
+            loadSampleFile((dir / "s.json").string());
+            ADD_FAILURE() << "accepted: " << j.dump();
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("s.json"), std::string::npos) << e.what();
+            EXPECT_EQ(e.where(), where) << e.what();
+            EXPECT_NE(e.message().find(what), std::string::npos) << e.what();
+        }
+    };
+    const nlohmann::json face = faceJson(kCube[0], image);
+    auto with = [&](const char* key, nlohmann::json value) {
+        nlohmann::json f = face;
+        f[key] = value;
+        return nlohmann::json{{"size", {0.05, 0.05, 0.05}}, {"faces", {f}}};
+    };
+    expectError({{"size", {0.05, 0.05, 0.05}}, {"faces", nlohmann::json::array()}}, "faces",
+                "at least one");
+    expectError({{"size", {0.05, 0.05}}, {"faces", {face}}}, "size", "three edges");
+    expectError({{"size", {0.05, 0.05, 1e308}}, {"faces", {face}}}, "size[2]", "beyond");
+    expectError({{"size", {0.05, 0.05, 20}}, {"faces", {face}}}, "size", "1 mm to 10 m");
+    expectError(with("image", "missing.png"), "faces[0].image", "no such image");
+    expectError(with("right", {0, 0, 0}), "faces[0].right", "1 mm to 10 m");
+    expectError(with("up", {0.05, 0, 0}), "faces[0].up", "across");
+    expectError(with("rihgt", {0.05, 0, 0}), "faces[0].rihgt", "unknown key");
+    expectError(with("origin", {0, "x", 0}), "faces[0].origin[1]", "");
+}
+
+// ---- the ring starts ----
+
+/// Rings starting at `starts` (samples): within each ring lightness falls linearly from
+/// `early` to `late` wood, then jumps back at the next start (a conifer's rise); with
+/// `porous`, the ring starts with a dark band of pores instead (a fall).
+std::vector<double> ringProfile(const std::vector<int>& starts, int length, bool porous) {
+    std::vector<double> L(size_t(length), 70.0);
+    std::mt19937 random(5);
+    std::normal_distribution<double> texture(0, 0.8);
+    for (size_t k = 0; k + 1 < starts.size(); ++k)
+        for (int i = starts[k]; i < starts[k + 1]; ++i) {
+            const double u = double(i - starts[k]) / (starts[k + 1] - starts[k]);
+            // Pores: a sharp start, fading into the late wood over a quarter of the ring.
+            L[size_t(i)] =
+                porous ? 55 + 20 * std::clamp((u - 0.15) / 0.25, 0.0, 1.0) : 82 - 20 * u * u * u;
+        }
+    for (double& v : L) v += texture(random);
+    return L;
+}
+
+TEST(RingStarts, FindsEachRingsEdgeInConifersAndRingPorousWood) {
+    const std::vector<int> starts = {10, 52, 95, 128, 175, 214, 262, 300, 335};
+    for (bool porous : {false, true}) {
+        const std::vector<int> found = ringStarts(ringProfile(starts, 340, porous), 40);
+        // The first and last starts lie where the profile begins and ends: the edges between.
+        ASSERT_GE(found.size(), starts.size() - 2) << (porous ? "porous" : "conifer");
+        size_t matched = 0;
+        for (int s : std::vector<int>(starts.begin() + 1, starts.end() - 1))
+            for (int f : found) matched += std::abs(f - s) <= 1;
+        EXPECT_EQ(matched, starts.size() - 2) << (porous ? "porous" : "conifer");
+    }
+}
+
+// ---- the round trip ----
+
+/// Six faces of a 5 cm cube baked from a straight trunk 70 mm from the cube's centre,
+/// slightly tilted, with a ring series of 2.5-4 mm rings, as PNG photographs.
+struct SyntheticSample {
+    fs::path file;
+    Vec3 pithAtY0{-0.06, 0, 0.035}, direction = normalize(Vec3{0.02, 2, 0.01});
+    std::vector<double> widths;
+};
+
+SyntheticSample bakeSyntheticSample(const fs::path& dir) {
+    SyntheticSample s;
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> width(0.0025, 0.004);
+    for (int year = 0; year < 60; ++year) s.widths.push_back(width(random));
+    Skeleton skeleton;
+    skeleton.addTrunk({s.pithAtY0 - s.direction * 1.0, s.pithAtY0 + s.direction * 1.0}, {0, 0});
+    skeleton.setRingWidths(s.widths);
+    // Hinoki's colours and anatomy, its ring shapes off: the rings are cylinders.
+    nlohmann::json grain = nlohmann::json::parse(
+        std::ifstream(fs::path(NENRIN_SOURCE_DIR) / "scenes/grain/species/hinoki.json"));
+    for (const char* key : {"sway", "wander", "direction", "rings"}) grain.erase(key);
+    const GrownTree tree(Skeleton(skeleton), parseGrain(grain, "hinoki"));
+    const WoodShader shader(tree.field());
+    nlohmann::json faces = nlohmann::json::array();
+    for (const CubeFace& f : kCube) {
+        SliceSpec spec;
+        spec.cut = PlaneCut{f.origin, f.right, f.up};
+        spec.resX = spec.resY = 256;
+        BakedGrid grid = sliceGrid(skeleton, spec);
+        bakeGrid(shader, grid, {2, true, "test"});
+        const std::string image = std::string(f.name) + ".png";
+        writeSlicePreviewPng(grid, (dir / image).string());
+        faces.push_back(faceJson(f, image));
+    }
+    s.file = dir / "sample.json";
+    writeJson(s.file, {{"size", {0.05, 0.05, 0.05}}, {"faces", faces}});
+    return s;
+}
+
+TEST(WoodFit, RecoversThePithAndTheRingWidthsOfABakedCube) {
+    const SyntheticSample truth = bakeSyntheticSample(scratch("round-trip"));
+    const Sample sample = loadSampleFile(truth.file.string());
+    FitOptions options;
+    options.threads = 2;
+    const WoodFit fit = fitSample(sample, options);
+
+    // The pith line: within 1 mm across it at the cube's centre, and its direction.
+    const Vec3 q = truth.pithAtY0 - fit.pith.point;
+    const Vec3 across = q - fit.pith.direction * dot(q, fit.pith.direction);
+    EXPECT_LT(length(across), 0.001) << "pith off by " << length(across) * 1e3 << " mm";
+    EXPECT_GT(std::abs(dot(fit.pith.direction, truth.direction)), std::cos(0.5 * M_PI / 180));
+
+    // The ring boundaries: the true ones (cumulative widths) in the measured range, each found
+    // within 0.3 mm once the radii's common offset is taken out (a tenth of a millimetre of
+    // pith error moves them all), and the widths between found neighbours within 10 %.
+    std::vector<double> boundaries{0};
+    for (double w : truth.widths) boundaries.push_back(boundaries.back() + w);
+    const std::vector<double>& found = fit.profile.boundaries;
+    ASSERT_GE(found.size(), 8u);
+    auto nearestTrue = [&](double r) {
+        double best = 1;
+        for (double b : boundaries)
+            if (std::abs(r - b) < std::abs(best)) best = r - b;
+        return best;
+    };
+    std::vector<double> offsets;
+    for (double f : found) offsets.push_back(nearestTrue(f));
+    std::nth_element(offsets.begin(), offsets.begin() + long(offsets.size() / 2), offsets.end());
+    const double offset = offsets[offsets.size() / 2];
+    EXPECT_LT(std::abs(offset), 1e-3);
+    int inside = 0, matched = 0, widthsChecked = 0;
+    for (size_t y = 0; y < boundaries.size(); ++y) {
+        const double r = boundaries[y] + offset;
+        if (r < found.front() - 1e-4 || r > found.back() + 1e-4) continue;
+        ++inside;
+        for (size_t k = 0; k < found.size(); ++k)
+            if (std::abs(found[k] - r) < 3e-4) {
+                ++matched;
+                if (k + 1 < found.size() && y + 1 < boundaries.size() &&
+                    std::abs(found[k + 1] - (boundaries[y + 1] + offset)) < 3e-4) {
+                    EXPECT_NEAR(found[k + 1] - found[k], truth.widths[y], 0.1 * truth.widths[y]);
+                    ++widthsChecked;
+                }
+            }
+    }
+    // (Narrow rings beside wide ones can show too weak an edge: 2 of 19 are missed today.)
+    EXPECT_GE(matched, 0.85 * inside) << "of " << inside << " ring boundaries";
+    EXPECT_GE(widthsChecked, 10);
+
+    // Baked through the fit, every face's rings run as the photo's.
+    for (const FaceFigures& f : fit.faces) EXPECT_LT(f.ringMedianDeg, 3) << "face " << f.name;
+}
+
+}  // namespace
+}  // namespace nenrin
