@@ -12,6 +12,7 @@
 
 #include "fit/least_squares.h"
 #include "renderer/stats/image_statistics.h"
+#include "util/axis_frame.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -129,9 +130,8 @@ Vec3 fibreDirection(std::span<const FacePhoto> faces) {
 }
 
 SearchFrame frameAround(const Vec3& d0, const Vec3& centre) {
-    const Vec3 ref = std::abs(d0.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    const Vec3 u = normalize(ref - d0 * dot(ref, d0));
-    return {d0, u, cross(d0, u), centre};
+    const AxisFrame frame(d0);
+    return {d0, frame.s, frame.t, centre};
 }
 
 double robustCost(std::span<const Observation> obs, size_t stride, const SearchFrame& f,
@@ -176,9 +176,8 @@ double ringSharpness(const PithLine& pith, std::span<const FacePhoto> faces, dou
 }  // namespace
 
 PithLine focusPithLine(const PithLine& pith, std::span<const FacePhoto> faces, double shell) {
-    const Vec3 ref = std::abs(pith.direction.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    const Vec3 u = normalize(ref - pith.direction * dot(ref, pith.direction));
-    const Vec3 v = cross(pith.direction, u);
+    const AxisFrame frame(pith.direction);
+    const Vec3 &u = frame.s, &v = frame.t;
     // A compass search over place (across the line) and tilt (of its direction, radians),
     // halving the steps when no move sharpens the rings.
     constexpr int kParameters = 4;  // place (m) and tilt (rad), each across the line
@@ -234,14 +233,15 @@ PithLine focusPithLine(const PithLine& pith, std::span<const FacePhoto> faces, d
     return out;
 }
 
-double ringRadius(const PithLine& pith, const Vec3& p) {
+Vec3 radialOffset(const PithLine& pith, const Vec3& p) {
     const Vec3 q = p - pith.point;
-    return length(q - pith.direction * dot(q, pith.direction));
+    return q - pith.direction * dot(q, pith.direction);
 }
 
+double ringRadius(const PithLine& pith, const Vec3& p) { return length(radialOffset(pith, p)); }
+
 Vec3 radialInPlane(const PithLine& pith, const Vec3& p, const Vec3& faceNormal) {
-    const Vec3 q = p - pith.point;
-    const Vec3 radial = q - pith.direction * dot(q, pith.direction);
+    const Vec3 radial = radialOffset(pith, p);
     return radial - faceNormal * dot(radial, faceNormal);
 }
 

@@ -6,7 +6,8 @@
 ///    side grain agree: rings and fibres are both across the radius);
 /// 2. the pith's place across it: a search over a polar grid around the sample (2 mm to
 ///    2 m out) for the smallest robust misfit, then
-/// 3. Ceres (Levenberg-Marquardt, Cauchy loss) refining place and tilt together.
+/// 3. Ceres (Levenberg-Marquardt, Cauchy loss) refining the place (the tilt is left to
+///    focusPithLine: ring directions near a knot pull it off).
 
 #include <span>
 #include <string>
@@ -23,6 +24,9 @@ struct PithLine {
     double medianMisfitDeg = 0;
     double distance = 0;  ///< from the sample's centre to the line, m
 };
+
+/// p less its nearest point on the line: across the line, outwards.
+Vec3 radialOffset(const PithLine& pith, const Vec3& p);
 
 /// The distance of p from the line: rings lie near its iso-surfaces (ring_warp.h: on them
 /// once warped).

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <tuple>
+#include <utility>
 
 #include "fit/ring_starts.h"
 #include "grain/cielab.h"
@@ -53,6 +55,21 @@ std::vector<Rgb> shellColours(std::span<const FacePhoto> faces, RadiusOf&& radiu
     }
     for (size_t k = size_t(last + 1); k < bins; ++k) columns[k] = columns[size_t(last)];
     return columns;
+}
+
+/// The smallest and largest radius of the pixels `keep` picks ({inf, 0} for none).
+template <class RadiusOf, class Keep>
+std::pair<double, double> radiusRange(std::span<const FacePhoto> faces, RadiusOf&& radiusOf,
+                                      Keep&& keep) {
+    double inner = std::numeric_limits<double>::infinity(), outer = 0;
+    for (const FacePhoto& f : faces)
+        for (int y = kEdge; y < f.lightness.height - kEdge; ++y)
+            for (int x = kEdge; x < f.lightness.width - kEdge; ++x)
+                if (keep(f, x, y)) {
+                    const double radius = radiusOf(f.position(x, y));
+                    inner = std::min(inner, radius), outer = std::max(outer, radius);
+                }
+    return {inner, outer};
 }
 
 /// A moving average over `reach` samples to either side.
@@ -136,14 +153,7 @@ template <class RadiusOf, class Keep>
 std::optional<RadialRings> ringsAlong(std::span<const FacePhoto> faces, RadiusOf&& radiusOf,
                                       Keep&& keep, const RadialRings& base,
                                       std::vector<double>& periods) {
-    double inner = std::numeric_limits<double>::infinity(), outer = 0;
-    for (const FacePhoto& f : faces)
-        for (int y = kEdge; y < f.lightness.height - kEdge; ++y)
-            for (int x = kEdge; x < f.lightness.width - kEdge; ++x)
-                if (keep(f, x, y)) {
-                    const double radius = radiusOf(f.position(x, y));
-                    inner = std::min(inner, radius), outer = std::max(outer, radius);
-                }
+    const auto [inner, outer] = radiusRange(faces, radiusOf, keep);
     if (!(outer > inner)) return std::nullopt;
     const double shortest = 5 * length(faces[0].face->right) / (kStatsSize - 1);
     double contrast = 0;
@@ -171,22 +181,15 @@ RadialRings measureRadialRings(std::span<const FacePhoto> faces, const PithLine&
                                const RingWarp& warp, const std::string& sampleFile,
                                double binWidth) {
     auto radiusOf = [&](const Vec3& p) { return warpedRingRadius(pith, warp, p); };
+    auto everywhere = [](const FacePhoto&, int, int) { return true; };
     RadialRings best;
-    best.innerRadius = std::numeric_limits<double>::infinity(), best.outerRadius = 0;
-    for (const FacePhoto& f : faces)
-        for (int y = kEdge; y < f.lightness.height - kEdge; ++y)
-            for (int x = kEdge; x < f.lightness.width - kEdge; ++x) {
-                const double radius = radiusOf(f.position(x, y));
-                best.innerRadius = std::min(best.innerRadius, radius);
-                best.outerRadius = std::max(best.outerRadius, radius);
-            }
+    std::tie(best.innerRadius, best.outerRadius) = radiusRange(faces, radiusOf, everywhere);
     // The strip over all faces is the longest; where F follows the rings only roughly it is
     // smeared, so the series may be measured as a dendrochronologist measures instead: along
     // a band across the rings, 3 mm wide, where F follows them closely (its direction off by
     // degrees moves a ring by more than its width over a whole face); bands through each
     // face's centre and a quarter of the face to either side. Of the strips whose rings stand
     // out nearly as clearly as the clearest's, the one whose rings span the longest radius.
-    auto everywhere = [](const FacePhoto&, int, int) { return true; };
     std::vector<RadialRings> candidates;
     std::vector<double> periods;
     if (auto all = ringsAlong(faces, radiusOf, everywhere, best, periods))

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "fit/least_squares.h"
+#include "util/axis_frame.h"
 
 namespace nenrin {
 
@@ -95,11 +96,13 @@ struct AnchorResidual {
     }
 };
 
-RingWarp frameOf(const PithLine& pith) {
+/// The warp's frame: azimuth 0 towards `centre` (the sample), so the azimuth's seam at half
+/// a turn lies opposite the sample, not across it (unless the pith runs through it).
+RingWarp frameOf(const PithLine& pith, const Vec3& centre) {
     RingWarp w;
     w.pith = pith;
-    const Vec3 ref = std::abs(pith.direction.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    w.u = normalize(ref - pith.direction * dot(ref, pith.direction));
+    const Vec3 towards = radialOffset(pith, centre);
+    w.u = length(towards) > 0 ? normalize(towards) : AxisFrame(pith.direction).s;
     w.v = cross(pith.direction, w.u);
     return w;
 }
@@ -136,8 +139,7 @@ WarpParams grainWarp(const RingWarp& warp, const Vec3& lower, const Vec3& upper,
         for (int j = 0; j < nodes; ++j)
             for (int i = 0; i < nodes; ++i) {
                 const Vec3 p = g.origin + Vec3{i * g.step.x, j * g.step.y, k * g.step.z};
-                const Vec3 q = p - warp.pith.point;
-                const Vec3 radial = q - warp.pith.direction * dot(q, warp.pith.direction);
+                const Vec3 radial = radialOffset(warp.pith, p);
                 const double r = length(radial);
                 g.displacement.push_back(r > 0 ? radial * (warp.at(p) / r) : Vec3{});
             }
@@ -146,14 +148,17 @@ WarpParams grainWarp(const RingWarp& warp, const Vec3& lower, const Vec3& upper,
 
 RingWarp fitRingWarp(std::span<const FacePhoto> faces, const PithLine& pith, double step,
                      double smoothness, double anchor) {
-    RingWarp warp = frameOf(pith);
-    // The lattice's extent over the faces' pixels, and their mean distance from the line.
-    double tMin = std::numeric_limits<double>::infinity(), tMax = -tMin, sMin = tMin, sMax = -tMin;
+    // The faces' pixels: their centre, their mean distance from the line, and (below) the
+    // lattice's extent over them.
+    Vec3 centre;
     double radiusSum = 0, count = 0;
     for (const FacePhoto& f : faces)
         for (const RingDirection& r : f.directions)
-            radiusSum += ringRadius(pith, r.position), ++count;
-    warp.meanRadius = count > 0 ? radiusSum / count : 0;
+            centre = centre + r.position, radiusSum += ringRadius(pith, r.position), ++count;
+    if (count == 0) return RingWarp{};
+    RingWarp warp = frameOf(pith, centre * (1 / count));
+    warp.meanRadius = radiusSum / count;
+    double tMin = std::numeric_limits<double>::infinity(), tMax = -tMin, sMin = tMin, sMax = -tMin;
     for (const FacePhoto& f : faces)
         for (const RingDirection& r : f.directions) {
             double t, s;
@@ -173,8 +178,7 @@ RingWarp fitRingWarp(std::span<const FacePhoto> faces, const PithLine& pith, dou
         const Vec3 n = f.face->normal();
         for (const RingDirection& r : f.directions) {
             if (r.weight <= 0.05) continue;
-            const Vec3 q = r.position - pith.point;
-            const Vec3 radialPart = q - pith.direction * dot(q, pith.direction);
+            const Vec3 radialPart = radialOffset(pith, r.position);
             const double radius = length(radialPart);
             if (!(radius > 0)) continue;
             const Vec3 radial = radialPart * (1 / radius);
