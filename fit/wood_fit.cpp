@@ -180,14 +180,17 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
                          [&](const SampleFace& f) { return f.name == name; }))
             throw InputError("command line", "--leave-out",
                              fmt::format("{} has no face named {}", sample.file, name));
+    if (std::all_of(sample.faces.begin(), sample.faces.end(), [&](const SampleFace& f) {
+            return std::find(options.heldOut.begin(), options.heldOut.end(), f.name) !=
+                   options.heldOut.end();
+        }))
+        throw InputError("command line", "--leave-out", "every face is left out: nothing to fit");
     std::vector<FacePhoto> photos, fitted;
     for (const SampleFace& face : sample.faces) photos.push_back(readFacePhoto(face));
     for (const FacePhoto& p : photos)
         if (std::find(options.heldOut.begin(), options.heldOut.end(), p.face->name) ==
             options.heldOut.end())
             fitted.push_back(p);
-    if (fitted.empty())
-        throw InputError("command line", "--leave-out", "every face is left out: nothing to fit");
 
     const size_t baseCount = std::max<size_t>(1, options.baseGrains.size());
     ProgressReporter progress(static_cast<long long>(3 + baseCount), "Fitting", options.quiet);
