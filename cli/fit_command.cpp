@@ -20,6 +20,7 @@ namespace {
 struct FitArguments {
     std::string sample, output;
     FitOptions options;
+    bool noKnots = false;
 };
 
 void runFit(const FitArguments& a) {
@@ -58,6 +59,14 @@ void runFit(const FitArguments& a) {
     fmt::print("{} rings on face {}, mean width {:.2f} mm{}\n", fit.profile.strip.rings,
                fit.profile.face, fit.grain["radial_speed"].get<double>() * 1e3,
                fit.base.empty() ? "" : "; anatomy from " + fit.base);
+    for (const KnotFigures& k : fit.knots)
+        fmt::print(
+            "knot on face {}{}: at column {:.0f}, row {:.0f}, {:.1f} mm across; the bake's "
+            "{}\n",
+            k.photo.face, k.heldOut ? " (held out)" : "", k.photo.column, k.photo.row,
+            2e3 * k.photo.radius,
+            k.offsetMm >= 0 ? fmt::format("{:.1f} mm from it", k.offsetMm)
+                            : std::string("shows none"));
     for (const FaceFigures& f : fit.faces)
         fmt::print(
             "face {}{}: rings {:.1f} deg (within 15 deg {:.0f} %), dE {:.1f}, fine {:.2f}x, "
@@ -89,10 +98,16 @@ void addFitCommand(CLI::App& app) {
                     "best. The fit sets the rings and colours");
     cmd->add_option("--leave-out", a->options.heldOut,
                     "A face (by name) to leave out of the fit and only measure; repeatable");
+    cmd->add_flag("--no-knots", a->noKnots,
+                  "Do not look for knots (dark patches that are not knots: stains, pitch "
+                  "pockets); the skeleton is the trunk alone");
     cmd->add_option("--threads", a->options.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024))
         ->default_val(0);
-    cmd->callback([a] { runFit(*a); });
+    cmd->callback([a] {
+        a->options.knots = !a->noKnots;
+        runFit(*a);
+    });
 }
 
 }  // namespace nenrin

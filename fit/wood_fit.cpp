@@ -153,10 +153,24 @@ std::vector<FaceFigures> calibrateColours(nlohmann::json& grain, const Skeleton&
         if (round == rounds || off < 0.005) return faces;
         for (const char* key : {"early_wood", "late_wood"}) {
             nlohmann::json& c = grain["colour"][key];
-            c = rgbJson(Rgb{c[0].get<double>() * ratio.r, c[1].get<double>() * ratio.g,
-                            c[2].get<double>() * ratio.b});
+            // (A grain's colours are reflectances: at most 1, however dark the bake.)
+            c = rgbJson(Rgb{std::min(1.0, c[0].get<double>() * ratio.r),
+                            std::min(1.0, c[1].get<double>() * ratio.g),
+                            std::min(1.0, c[2].get<double>() * ratio.b)});
         }
     }
+}
+
+/// The bake's L*.
+Plane bakedLightness(const FaceFigures& f) {
+    std::array<Plane, 3> rgb;
+    for (int c = 0; c < 3; ++c) {
+        rgb[size_t(c)] = Plane(f.bake.width, f.bake.height);
+        for (int y = 0; y < f.bake.height; ++y)
+            for (int x = 0; x < f.bake.width; ++x)
+                rgb[size_t(c)].at(x, y) = std::max(0.0f, f.bake.at(x, y)[c]);
+    }
+    return labPlanes(rgb)[0];
 }
 
 /// How far the bakes' texture is from the photos': the squared logarithms of the fine and mid
@@ -169,6 +183,87 @@ double textureMisfit(const std::vector<FaceFigures>& faces) {
             sum += ratio > 0 ? std::pow(std::log(ratio), 2) : 100.0;
     }
     return sum;
+}
+
+/// The knots the photos show, one per face at most.
+std::vector<FaceKnot> seenKnots(std::span<const FacePhoto> photos, const PithLine& pith) {
+    std::vector<FaceKnot> knots;
+    for (const FacePhoto& p : photos)
+        if (std::optional<FaceKnot> k = findFaceKnot(p.lightness, *p.face, &pith))
+            knots.push_back(*k);
+    return knots;
+}
+
+/// Leaves out the ring directions (and fine gradients) within twice a knot's radius of its
+/// centre: there the rings circle the branch, not the pith, and would pull the pith line and
+/// the warp (a knot face's tilt went 29 degrees off).
+void maskKnots(std::vector<FacePhoto>& photos, std::span<const FaceKnot> knots) {
+    for (FacePhoto& p : photos)
+        for (const FaceKnot& k : knots) {
+            if (k.face != p.face->name) continue;
+            const double reach = std::max(2 * k.radius, 0.005);
+            size_t kept = 0;
+            for (size_t i = 0; i < p.directions.size(); ++i)
+                if (length(p.directions[i].position - k.centre) > reach) {
+                    p.directions[kept] = p.directions[i];
+                    p.fineGradients[kept] = p.fineGradients[i];
+                    ++kept;
+                }
+            p.directions.resize(kept);
+            p.fineGradients.resize(kept);
+        }
+}
+
+/// Every face whose photograph shows a knot, with the bake's ring centre there.
+std::vector<KnotFigures> knotFigures(std::span<const FacePhoto> photos,
+                                     const std::vector<FaceFigures>& faces, const PithLine& pith) {
+    std::vector<KnotFigures> knots;
+    for (size_t i = 0; i < photos.size(); ++i) {
+        const std::optional<FaceKnot> seen =
+            findFaceKnot(photos[i].lightness, *photos[i].face, &pith);
+        if (!seen) continue;
+        KnotFigures k;
+        k.heldOut = faces[i].heldOut;
+        k.photo = *seen;
+        k.baked = strongestRingCentre(bakedLightness(faces[i]), *photos[i].face);
+        if (k.baked) k.offsetMm = 1e3 * length(k.baked->centre - k.photo.centre);
+        knots.push_back(k);
+    }
+    return knots;
+}
+
+/// Where a branch crosses a face is not quite where its knot's rings centre in the bake (an
+/// oblique cone's section is an eccentric oval; the junction blend bends the rings): moves
+/// each knot's aim by the bake's miss (0.2-3 mm) so that a branch through the aims bakes its
+/// knots onto the photos'. True when an aim moved.
+bool aimKnots(std::vector<FaceKnot>& aims, const std::vector<KnotFigures>& baked) {
+    bool moved = false;
+    for (FaceKnot& aim : aims)
+        for (const KnotFigures& k : baked) {
+            if (k.photo.face != aim.face || !k.baked) continue;
+            const Vec3 miss = k.photo.centre - k.baked->centre;
+            if (length(miss) < 2e-4 || length(miss) > 3e-3) continue;
+            aim.centre = aim.centre + miss;
+            moved = true;
+        }
+    return moved;
+}
+
+nlohmann::json pointJson(const Vec3& p) {
+    return {rounded(p.x, 1e-6), rounded(p.y, 1e-6), rounded(p.z, 1e-6)};
+}
+
+nlohmann::json knotJson(const FaceKnot& k) {
+    return {{"column", rounded(k.column, 0.01)},
+            {"row", rounded(k.row, 0.01)},
+            {"centre",
+             {rounded(k.centre.x, 1e-6), rounded(k.centre.y, 1e-6), rounded(k.centre.z, 1e-6)}},
+            {"radius_mm", rounded(k.radius * 1e3, 0.01)},
+            {"evidence", rounded(k.evidence, 0.01)},
+            {"coverage", k.coverage},
+            {"darkening", rounded(k.darkening, 0.01)},
+            {"roundness", rounded(k.roundness, 0.001)},
+            {"long_axis", pointJson(k.longAxis)}};
 }
 
 }  // namespace
@@ -213,6 +308,17 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
             "the rings are nearly straight: the pith lies {:.2f} m away and its distance is "
             "uncertain",
             fit.pith.distance));
+    // Knots: their rings circle their branches; left out of the pith, warp and ring fits, and
+    // each made a branch of the skeleton.
+    const std::vector<FaceKnot> knots =
+        options.knots ? seenKnots(fitted, fit.pith) : std::vector<FaceKnot>{};
+    if (!knots.empty()) {
+        maskKnots(fitted, knots);
+        // Fitted again without the knots' rings, kept if it fits the rest better (with few
+        // faces left the line can wander off).
+        const PithLine again = focusPithLine(fitPithLine(fitted, sample.file), fitted);
+        if (pithMisfitDeg(again, fitted) < pithMisfitDeg(fit.pith, fitted)) fit.pith = again;
+    }
     fit.warp = fitRingWarp(fitted, fit.pith);
     progress.advance();
     fit.profile = measureRadialRings(fitted, fit.pith, fit.warp, sample.file);
@@ -223,7 +329,10 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
             "(their period in the photographs); an end-grain face would measure them",
             1e3 * (fit.profile.boundaries.back() - fit.profile.boundaries.front()) /
                 double(std::max<size_t>(1, fit.profile.boundaries.size() - 1))));
+    fit.branches =
+        knotBranches(knots, fit.pith, sample.faces, fit.pith.distance + length(sample.size) + 0.01);
     fit.skeleton = pithSkeleton(fit.pith, fit.profile);
+    addKnotBranches(fit.skeleton, fit.branches);
     // The anatomy (the texture) comes from a base grain: of several, the one whose bakes'
     // fine and mid texture come nearest the photos'.
     const std::vector<std::string> bases =
@@ -240,7 +349,17 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
         if (score < bestScore)
             bestScore = score, fit.grain = grain, fit.faces = faces, fit.base = base;
     }
-    if (bases.size() > 1) fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
+    std::vector<FaceKnot> aimed = knots;
+    if (aimKnots(aimed, knotFigures(photos, fit.faces, fit.pith))) {
+        fit.branches = knotBranches(aimed, fit.pith, sample.faces,
+                                    fit.pith.distance + length(sample.size) + 0.01);
+        fit.skeleton = pithSkeleton(fit.pith, fit.profile);
+        addKnotBranches(fit.skeleton, fit.branches);
+        fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
+    } else if (bases.size() > 1) {
+        fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
+    }
+    if (options.knots) fit.knots = knotFigures(photos, fit.faces, fit.pith);
     if (options.baseGrains.empty())
         fit.warnings.push_back(
             "no base grain (--grain): the bakes carry no anatomy (fibres, pores, rays); give "
@@ -259,6 +378,24 @@ nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
                          {"dE", f.dE},
                          {"fine_ratio", f.fineRatio},
                          {"mid_ratio", f.midRatio}});
+    nlohmann::json branches = nlohmann::json::array(), seen = nlohmann::json::array();
+    for (const KnotBranch& b : fit.branches) {
+        nlohmann::json points = nlohmann::json::array();
+        for (const Vec3& q : b.points) points.push_back(pointJson(q));
+        branches.push_back({{"faces", b.faces},
+                            {"start", pointJson(b.start)},
+                            {"points", points},
+                            {"gamma", rounded(b.gamma, 1e-4)},
+                            {"sized_by", b.sizedBy},
+                            {"photo_radius_mm", rounded(b.radius * 1e3, 0.01)}});
+    }
+    for (const KnotFigures& k : fit.knots)
+        seen.push_back({{"face", k.photo.face},
+                        {"held_out", k.heldOut},
+                        {"photo", knotJson(k.photo)},
+                        {"baked", k.baked ? knotJson(*k.baked) : nlohmann::json(nullptr)},
+                        {"offset_mm", rounded(k.offsetMm, 0.01)}});
+    const nlohmann::json knotsJson = {{"branches", branches}, {"faces", seen}};
     const PithLine& p = fit.pith;
     nlohmann::json widths = nlohmann::json::array();
     const std::vector<double>& b = fit.profile.boundaries;
@@ -280,6 +417,7 @@ nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
               {"widths", widths},
               {"inner_radius", fit.profile.innerRadius},
               {"outer_radius", fit.profile.outerRadius}}},
+            {"knots", knotsJson},
             {"anatomy_from", fit.base},
             {"faces", faces},
             {"warnings", fit.warnings}};

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/knot_branch.h"
 #include "fit/pith_fit.h"
 #include "fit/radial_rings.h"
 #include "fit/ring_warp.h"
@@ -28,6 +29,9 @@ struct FitOptions {
     /// Faces to leave out of the fit (by name): they are still baked and measured, which is
     /// how a fit is judged on faces it never saw.
     std::vector<std::string> heldOut;
+    /// Knots: found in the photos and made branches of the skeleton (knot_find.h,
+    /// knot_branch.h).
+    bool knots = true;
     bool quiet = false;  ///< no progress line on a terminal
 };
 
@@ -42,14 +46,24 @@ struct FaceFigures {
     std::array<Plane, 3> photo;  ///< the photograph at 256 x 256, scene-linear
 };
 
+/// A knot seen in one face's photograph and where the fitted wood's bake puts it.
+struct KnotFigures {
+    bool heldOut = false;
+    FaceKnot photo;
+    std::optional<FaceKnot> baked;  ///< the bake's strongest ring centre on that face
+    double offsetMm = -1;           ///< photo to bake, mm (-1: the bake shows none)
+};
+
 struct WoodFit {
     PithLine pith;
     RingWarp warp;
     RadialRings profile;
+    std::vector<KnotBranch> branches;  ///< one per knot (or pair of faces' knots) seen
     Skeleton skeleton;
     nlohmann::json grain;
     std::string base;  ///< the base grain chosen ("" for none)
     std::vector<FaceFigures> faces;
+    std::vector<KnotFigures> knots;  ///< every face whose photograph shows a knot
     std::vector<std::string> warnings;
     double seconds = 0;
 };

@@ -242,6 +242,37 @@ TEST(WoodFit, RecoversThePithAndTheRingWidthsOfABakedCube) {
 
     // Baked through the fit, every face's rings run as the photo's.
     for (const FaceFigures& f : fit.faces) EXPECT_LT(f.ringMedianDeg, 3) << "face " << f.name;
+    // A cube without knots gets no branch.
+    EXPECT_TRUE(fit.branches.empty());
+    EXPECT_TRUE(fit.knots.empty());
+}
+
+TEST(WoodFit, PutsTheKnotOfHinokiH11WhereThePhotosShowIt) {
+    SKIP_WITHOUT_MOKUME();
+    const Sample sample = loadSampleFile((kMokume / "H11/sample.json").string());
+    FitOptions options;
+    options.threads = 2;
+    options.quiet = true;
+    options.baseGrains = {
+        (fs::path(NENRIN_SOURCE_DIR) / "scenes/grain/species/hinoki.json").string()};
+    const WoodFit fit = fitSample(sample, options);
+    // One branch through both faces the knot crosses (marked in C_knot.png and F_knot.png).
+    ASSERT_EQ(fit.branches.size(), 1u);
+    EXPECT_EQ(fit.branches[0].faces.size(), 2u);
+    ASSERT_EQ(fit.knots.size(), 2u) << "the knot is seen on C and F and nowhere else";
+    for (const KnotFigures& k : fit.knots) {
+        ASSERT_TRUE(k.photo.face == "C" || k.photo.face == "F") << k.photo.face;
+        const double markColumn = k.photo.face == "C" ? 71 : 142;
+        const double markRow = k.photo.face == "C" ? 184 : 207;
+        const double mmPerPixel = 50.0 / 255;
+        ASSERT_TRUE(k.baked.has_value()) << "face " << k.photo.face;
+        // The bake's knot within 3 mm of the mark (the bound) and within 1 mm of the
+        // knot the fit saw in the photo.
+        EXPECT_LT(std::hypot(k.baked->column - markColumn, k.baked->row - markRow) * mmPerPixel,
+                  3.0)
+            << "face " << k.photo.face;
+        EXPECT_LT(k.offsetMm, 1.0) << "face " << k.photo.face;
+    }
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ import sys
 
 MAX_FILE_LINES = 600
 MAX_FUNCTION_LINES = 100
-LIBRARIES = ["util", "skeleton", "grain", "shader", "renderer", "cli"]
+LIBRARIES = ["util", "skeleton", "grain", "shader", "renderer", "fit", "cli"]
 
 
 def strip(text):
