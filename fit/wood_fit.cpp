@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "fit/knot_colour.h"
 #include "grain/grain_params.h"
 #include "grain/grown_tree.h"
 #include "renderer/bake/bake_specs.h"
@@ -79,6 +80,7 @@ nlohmann::json fittedGrain(const std::string& base, const Sample& sample,
 
 /// Rounds of colour calibration at most.
 constexpr int kColourRounds = 3;
+constexpr int kKnotColourRounds = 2;
 
 /// The fitted faces' photographed mean colour over their baked one, per channel (linear).
 Rgb colourRatio(const std::vector<FaceFigures>& faces) {
@@ -266,10 +268,8 @@ nlohmann::json knotJson(const FaceKnot& k) {
             {"long_axis", pointJson(k.longAxis)}};
 }
 
-}  // namespace
-
-WoodFit fitSample(const Sample& sample, const FitOptions& options) {
-    const auto start = std::chrono::steady_clock::now();
+/// --leave-out names faces of the sample, and not all of them.
+void checkHeldOut(const Sample& sample, const FitOptions& options) {
     for (const std::string& name : options.heldOut)
         if (std::none_of(sample.faces.begin(), sample.faces.end(),
                          [&](const SampleFace& f) { return f.name == name; }))
@@ -280,6 +280,22 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
                    options.heldOut.end();
         }))
         throw InputError("command line", "--leave-out", "every face is left out: nothing to fit");
+}
+
+/// The skeleton: the trunk along the pith line and a branch for each knot (or pair of faces'
+/// knots).
+void placeBranches(WoodFit& fit, const std::vector<FaceKnot>& knots, const Sample& sample) {
+    fit.branches =
+        knotBranches(knots, fit.pith, sample.faces, fit.pith.distance + length(sample.size) + 0.01);
+    fit.skeleton = pithSkeleton(fit.pith, fit.profile);
+    addKnotBranches(fit.skeleton, fit.branches);
+}
+
+}  // namespace
+
+WoodFit fitSample(const Sample& sample, const FitOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    checkHeldOut(sample, options);
     std::vector<FacePhoto> photos, fitted;
     for (const SampleFace& face : sample.faces) photos.push_back(readFacePhoto(face));
     for (const FacePhoto& p : photos)
@@ -329,10 +345,7 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
             "(their period in the photographs); an end-grain face would measure them",
             1e3 * (fit.profile.boundaries.back() - fit.profile.boundaries.front()) /
                 double(std::max<size_t>(1, fit.profile.boundaries.size() - 1))));
-    fit.branches =
-        knotBranches(knots, fit.pith, sample.faces, fit.pith.distance + length(sample.size) + 0.01);
-    fit.skeleton = pithSkeleton(fit.pith, fit.profile);
-    addKnotBranches(fit.skeleton, fit.branches);
+    placeBranches(fit, knots, sample);
     // The anatomy (the texture) comes from a base grain: of several, the one whose bakes'
     // fine and mid texture come nearest the photos'.
     const std::vector<std::string> bases =
@@ -351,13 +364,16 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
     }
     std::vector<FaceKnot> aimed = knots;
     if (aimKnots(aimed, knotFigures(photos, fit.faces, fit.pith))) {
-        fit.branches = knotBranches(aimed, fit.pith, sample.faces,
-                                    fit.pith.distance + length(sample.size) + 0.01);
-        fit.skeleton = pithSkeleton(fit.pith, fit.profile);
-        addKnotBranches(fit.skeleton, fit.branches);
+        placeBranches(fit, aimed, sample);
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
     } else if (bases.size() > 1) {
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
+    }
+    // The knots' wood coloured as photographed (two rounds: the knot share's smoothstep
+    // blends the knot colour in, so one ratio undershoots).
+    for (int round = 0; round < kKnotColourRounds && !fit.branches.empty(); ++round) {
+        if (!matchKnotColour(fit.grain, fit.faces)) break;
+        fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 0);
     }
     if (options.knots) fit.knots = knotFigures(photos, fit.faces, fit.pith);
     if (options.baseGrains.empty())
