@@ -75,11 +75,11 @@ Vec3 singleFaceDirection(const FaceKnot& k, const PithLine& pith, const SampleFa
     return best;
 }
 
-/// gamma from the knot radius on the face the branch crosses most squarely: an oblique
-/// crossing draws an oval 1/cos longer one way; the dark radius is about the two axes'
-/// geometric mean.
+/// gamma and the birth from the knot on the face the branch crosses most squarely: an
+/// oblique crossing draws an oval 1/cos longer one way; the dark radius is about the two
+/// axes' geometric mean.
 void sizeBranch(KnotBranch& b, std::span<const FaceKnot> knots, const PithLine& pith,
-                std::span<const SampleFace> faces, const Vec3& u) {
+                std::span<const SampleFace> faces, const Vec3& u, double ringWidth) {
     double best = -1;
     for (const FaceKnot& k : knots) {
         if (std::find(b.faces.begin(), b.faces.end(), k.face) == b.faces.end()) continue;
@@ -88,16 +88,24 @@ void sizeBranch(KnotBranch& b, std::span<const FaceKnot> knots, const PithLine& 
         best = square;
         b.sizedBy = k.face;
         b.radius = k.radius;
+        b.sizedAt = k.centre;
         const double across = k.radius * std::sqrt(std::max(square, 0.1));
-        b.gamma =
-            std::clamp(across / std::max(ringRadius(pith, k.centre), 1e-4), kMinGamma, kMaxGamma);
+        const double r = std::max(ringRadius(pith, k.centre), 1e-4);
+        b.birth = 0;
+        if (k.ringSpacing > 0 && ringWidth > 0) {
+            b.gamma = std::clamp(k.ringSpacing / ringWidth, kMinGamma, kMaxGamma);
+            b.birth = std::max(0.0, (r - across / b.gamma) / ringWidth);
+        } else {
+            b.gamma = std::clamp(across / r, kMinGamma, kMaxGamma);
+        }
     }
 }
 
 }  // namespace
 
 std::vector<KnotBranch> knotBranches(std::span<const FaceKnot> knots, const PithLine& pith,
-                                     std::span<const SampleFace> faces, double reach) {
+                                     std::span<const SampleFace> faces, double reach,
+                                     double ringWidth) {
     std::vector<size_t> order(knots.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(),
@@ -135,7 +143,7 @@ std::vector<KnotBranch> knotBranches(std::span<const FaceKnot> knots, const Pith
             b.faces = {k.face};
             if (!placeBranch(b, pith, k.centre, u, reach)) continue;
         }
-        sizeBranch(b, knots, pith, faces, u);
+        sizeBranch(b, knots, pith, faces, u, ringWidth);
         branches.push_back(b);
     }
     return branches;
@@ -145,9 +153,14 @@ void addKnotBranches(Skeleton& skeleton, std::span<const KnotBranch> branches) {
     for (const KnotBranch& b : branches) {
         std::vector<Vec3> points = {b.start};
         points.insert(points.end(), b.points.begin(), b.points.end());
+        // Birth in proportion to the path from the start, `birth` at the sized knot.
+        const double pace = b.birth / std::max(length(b.sizedAt - b.start), 1e-6);
+        std::vector<double> births = {0};
+        for (size_t i = 1; i < points.size(); ++i)
+            births.push_back(births.back() + pace * length(points[i] - points[i - 1]));
         ChainProperties props;
         props.gamma = b.gamma;
-        skeleton.addBranch(0, points, std::vector<double>(points.size(), 0.0), props);
+        skeleton.addBranch(0, points, births, props);
     }
 }
 

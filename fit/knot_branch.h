@@ -23,12 +23,17 @@ struct KnotBranch {
     double gamma = 0.1;
     std::string sizedBy;  ///< the face whose knot radius sets gamma
     double radius = 0;    ///< m: that knot's radius in the photograph
+    Vec3 sizedAt;         ///< that knot's centre
+    /// Years: when the branch's tip passed `sizedAt` (its birth times grow in proportion to
+    /// the path from the pith, which it leaves at year 0).
+    double birth = 0;
 };
 
 /// The branches of the knots (at most one per face). `reach`: how far past the pith the
-/// branches must run to leave the sample (m).
+/// branches must run to leave the sample (m); `ringWidth`: the trunk's mean ring width (m).
 std::vector<KnotBranch> knotBranches(std::span<const FaceKnot> knots, const PithLine& pith,
-                                     std::span<const SampleFace> faces, double reach);
+                                     std::span<const SampleFace> faces, double reach,
+                                     double ringWidth);
 
 /// Adds the branches to a skeleton whose trunk is one segment along the pith line.
 void addKnotBranches(Skeleton& skeleton, std::span<const KnotBranch> branches);

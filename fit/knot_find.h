@@ -30,6 +30,9 @@ struct FaceKnot {
     /// face's plane).
     double roundness = 1;
     Vec3 longAxis;
+    /// m: between the knot's rings near its centre (their mean spacing along the radius over
+    /// the inner 30 px); 0 when fewer than 3 rings show there.
+    double ringSpacing = 0;
 };
 
 /// The place on a face (its lightness at the statistics' scale, 256 x 256) that the most ring

@@ -265,6 +265,7 @@ nlohmann::json knotJson(const FaceKnot& k) {
             {"coverage", k.coverage},
             {"darkening", rounded(k.darkening, 0.01)},
             {"roundness", rounded(k.roundness, 0.001)},
+            {"ring_spacing_mm", rounded(k.ringSpacing * 1e3, 0.01)},
             {"long_axis", pointJson(k.longAxis)}};
 }
 
@@ -285,8 +286,10 @@ void checkHeldOut(const Sample& sample, const FitOptions& options) {
 /// The skeleton: the trunk along the pith line and a branch for each knot (or pair of faces'
 /// knots).
 void placeBranches(WoodFit& fit, const std::vector<FaceKnot>& knots, const Sample& sample) {
-    fit.branches =
-        knotBranches(knots, fit.pith, sample.faces, fit.pith.distance + length(sample.size) + 0.01);
+    const std::vector<double>& b = fit.profile.boundaries;
+    const double ringWidth = (b.back() - b.front()) / double(std::max<size_t>(1, b.size() - 1));
+    fit.branches = knotBranches(knots, fit.pith, sample.faces,
+                                fit.pith.distance + length(sample.size) + 0.01, ringWidth);
     fit.skeleton = pithSkeleton(fit.pith, fit.profile);
     addKnotBranches(fit.skeleton, fit.branches);
 }
@@ -402,6 +405,7 @@ nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
                             {"start", pointJson(b.start)},
                             {"points", points},
                             {"gamma", rounded(b.gamma, 1e-4)},
+                            {"birth_years", rounded(b.birth, 0.01)},
                             {"sized_by", b.sizedBy},
                             {"photo_radius_mm", rounded(b.radius * 1e3, 0.01)}});
     }
