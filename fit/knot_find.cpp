@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace nenrin {
@@ -22,11 +23,17 @@ constexpr double kLineSigma = 3;
 /// least squares settle between the eccentric ovals of an oblique branch (3 mm off on H11 F).
 constexpr int kFocusReach = 25;
 constexpr double kFocusDisc = 14, kFocusSigma = 1.5;
-/// The thresholds of a knot (measured on the Mokume faces: knots 5.5-5.9 and 5-6 eighths,
-/// plain faces at most 3.7 and the trunk's rings 2-4 eighths).
+/// The thresholds of a knot. On the Mokume faces the two knots (H11 C, F) measure evidence
+/// 5.1 and 5.3, 6 eighths, 26 and 22 L* darker; the ten other faces' strongest centres at most
+/// 3.2 (with up to 7 eighths and 7 L*): the evidence tells them apart.
 constexpr double kMinEvidence = 4.5;
 constexpr int kMinCoverage = 5;
 constexpr double kMinDarkening = 5;  ///< L*
+/// Or a dark patch the rings circle all round, whose own rings are faint (nenrin's own
+/// knots: evidence 3.2-4.3, 8 eighths, 26 L* darker).
+constexpr double kMinDarkPatchEvidence = 3;
+constexpr int kMinDarkPatchCoverage = 7;
+constexpr double kMinDarkPatchDarkening = 15;
 constexpr double kPithClearance = 0.010;
 
 struct Orientation {
@@ -186,31 +193,82 @@ DarkWood darkWood(const Plane& blurred, const std::array<double, 2>& centre) {
     return {kVoteReach, half};
 }
 
+/// The dark wood's outline in pixels: its long axis's angle (x right, y down) and the ratio
+/// of its short to its long axis.
+struct PixelEllipse {
+    double angle = 0, roundness = 1;
+};
+
+/// The ellipse of the second moments of points weighted `w` at (px, py).
+struct Moments {
+    double w = 0, x = 0, y = 0, xx = 0, yy = 0, xy = 0;
+    void add(double weight, double px, double py) {
+        w += weight, x += weight * px, y += weight * py;
+        xx += weight * px * px, yy += weight * py * py, xy += weight * px * py;
+    }
+    std::optional<PixelEllipse> ellipse() const {
+        if (!(w > 0)) return std::nullopt;
+        const double mx = x / w, my = y / w;
+        const double cxx = xx / w - mx * mx, cyy = yy / w - my * my, cxy = xy / w - mx * my;
+        const double mean = 0.5 * (cxx + cyy);
+        const double spread = std::sqrt(0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy);
+        if (!(mean + spread > 0)) return std::nullopt;
+        return PixelEllipse{0.5 * std::atan2(2 * cxy, cxx - cyy),
+                            std::sqrt(std::max(0.0, mean - spread) / (mean + spread))};
+    }
+};
+
 /// The ellipse of the dark wood within twice its radius (pixels darker than its edge,
-/// weighted by how much darker), in the face's metres.
-void darkOutline(FaceKnot& k, const Plane& blurred, const std::array<double, 2>& centre,
-                 const DarkWood& dark, const SampleFace& face) {
+/// weighted by how much darker): in the face's metres into `k`, and in pixels.
+PixelEllipse darkOutline(FaceKnot& k, const Plane& blurred, const std::array<double, 2>& centre,
+                         const DarkWood& dark, const SampleFace& face) {
     const double last = blurred.width - 1;
     const Vec3 right = face.right * (1 / last), down = face.up * (-1 / last);
     const double sx = length(right), sy = length(down), reach = 2 * dark.radius;
-    double w = 0, mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
+    Moments metres, pixels;
     for (int y = 0; y < blurred.height; ++y)
         for (int x = 0; x < blurred.width; ++x) {
             const double dx = x - centre[0], dy = y - centre[1];
             const double below = dark.edge - blurred.at(x, y);
             if (below <= 0 || std::hypot(dx, dy) > reach) continue;
-            const double px = dx * sx, py = dy * sy;
-            w += below, mx += below * px, my += below * py;
-            xx += below * px * px, yy += below * py * py, xy += below * px * py;
+            metres.add(below, dx * sx, dy * sy);
+            pixels.add(below, dx, dy);
         }
-    if (!(w > 0)) return;
-    mx /= w, my /= w;
-    xx = xx / w - mx * mx, yy = yy / w - my * my, xy = xy / w - mx * my;
-    const double mean = 0.5 * (xx + yy), spread = std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
-    if (!(mean + spread > 0)) return;
-    k.roundness = std::sqrt(std::max(0.0, mean - spread) / (mean + spread));
-    const double angle = 0.5 * std::atan2(2 * xy, xx - yy);
-    k.longAxis = normalize(right * (std::cos(angle) / sx) + down * (std::sin(angle) / sy));
+    if (const std::optional<PixelEllipse> e = metres.ellipse()) {
+        k.roundness = e->roundness;
+        k.longAxis =
+            normalize(right * (std::cos(e->angle) / sx) + down * (std::sin(e->angle) / sy));
+    }
+    return pixels.ellipse().value_or(PixelEllipse{});
+}
+
+/// Where a point of the image that `unstretched` makes came from: the long axis through
+/// `centre` stretched back by 1 / roundness.
+std::array<double, 2> stretchedBack(const std::array<double, 2>& p,
+                                    const std::array<double, 2>& centre, const PixelEllipse& e) {
+    const double c = std::cos(e.angle), s = std::sin(e.angle);
+    const double dx = p[0] - centre[0], dy = p[1] - centre[1];
+    const double along = (dx * c + dy * s) / e.roundness, across = -dx * s + dy * c;
+    return {centre[0] + along * c - across * s, centre[1] + along * s + across * c};
+}
+
+/// The image squeezed along the outline's long axis through `centre` by its roundness, so that
+/// an oblique branch's oval rings become circles (bilinear, the edge repeated outside).
+Plane unstretched(const Plane& image, const std::array<double, 2>& centre, const PixelEllipse& e) {
+    Plane out(image.width, image.height);
+    auto at = [&](int x, int y) {
+        return image.at(std::clamp(x, 0, image.width - 1), std::clamp(y, 0, image.height - 1));
+    };
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            const std::array<double, 2> p = stretchedBack({double(x), double(y)}, centre, e);
+            const double fx = std::floor(p[0]), fy = std::floor(p[1]);
+            const double tx = p[0] - fx, ty = p[1] - fy;
+            const int ix = int(fx), iy = int(fy);
+            out.at(x, y) = (1 - ty) * ((1 - tx) * at(ix, iy) + tx * at(ix + 1, iy)) +
+                           ty * ((1 - tx) * at(ix, iy + 1) + tx * at(ix + 1, iy + 1));
+        }
+    return out;
 }
 
 /// The mean spacing (pixels) of the dark rings round the centre within `reach`: minima of
@@ -246,7 +304,17 @@ double ringSpacing(const Plane& lightness, const std::array<double, 2>& centre, 
 
 }  // namespace
 
-std::optional<FaceKnot> strongestRingCentre(const Plane& lightness, const SampleFace& face) {
+namespace {
+
+struct RingCentre {
+    std::array<double, 2> centre;  ///< pixels
+    double evidence = 0;
+    int coverage = 0;
+};
+
+/// The place the most ring normals point at (votes, least squares, the innermost loop), or
+/// none (no ring structure, or a centre off the image).
+std::optional<RingCentre> ringCentre(const Plane& lightness) {
     const Orientation o = ringOrientation(lightness);
     const Plane votes = centreVotes(o);
     const auto peak = std::max_element(votes.values.begin(), votes.values.end());
@@ -258,33 +326,74 @@ std::optional<FaceKnot> strongestRingCentre(const Plane& lightness, const Sample
     std::array<double, 2> centre = {double(index % size_t(votes.width)),
                                     double(index / size_t(votes.width))};
     for (double disc : kRefineDiscs) centre = refineCentre(o, centre, disc);
-    if (centre[0] >= 0 && centre[1] >= 0 && centre[0] <= votes.width - 1 &&
-        centre[1] <= votes.height - 1)
-        centre = focusCentre(o, centre);
-    const double last = lightness.width - 1;
-    if (!(centre[0] >= 0 && centre[0] <= last && centre[1] >= 0 && centre[1] <= last))
+    const double lastX = votes.width - 1, lastY = votes.height - 1;
+    if (!(centre[0] >= 0 && centre[0] <= lastX && centre[1] >= 0 && centre[1] <= lastY))
         return std::nullopt;  // a centre off the face: nothing to place a knot by
+    centre = focusCentre(o, centre);
+    return RingCentre{centre, *peak / mean, coverage(o, centre)};
+}
+
+/// The knot's figures at a ring centre; its outline in pixels into `outline`.
+FaceKnot measureKnot(const Plane& lightness, const Plane& blurred, const SampleFace& face,
+                     const RingCentre& found, PixelEllipse& outline) {
+    const double last = lightness.width - 1;
+    const std::array<double, 2>& centre = found.centre;
     FaceKnot k;
     k.face = face.name;
     k.column = centre[0], k.row = centre[1];
     k.centre = face.at(centre[0] / last, centre[1] / last);
-    k.evidence = *peak / mean;
-    k.coverage = coverage(o, centre);
-    const Plane blurred = gaussianFilter(lightness, 5);
-    const double faceMedian = median(lightness.values);
-    k.darkening = faceMedian - blurred.at(int(std::lround(centre[0])), int(std::lround(centre[1])));
+    k.evidence = found.evidence;
+    k.coverage = found.coverage;
+    k.darkening = median(lightness.values) -
+                  blurred.at(int(std::lround(centre[0])), int(std::lround(centre[1])));
     const double pixel = 0.5 * (length(face.right) + length(face.up)) / last;
     const DarkWood dark = darkWood(blurred, centre);
     k.radius = dark.radius * pixel;
     k.longAxis = normalize(face.right);
-    darkOutline(k, blurred, centre, dark, face);
+    outline = darkOutline(k, blurred, centre, dark, face);
     k.ringSpacing = ringSpacing(lightness, centre, int(std::min(dark.radius, 30.0))) * pixel;
     return k;
 }
 
+/// Outlines rounder than this are taken as circles.
+constexpr double kRoundEnough = 0.85;
+
+}  // namespace
+
+std::optional<FaceKnot> strongestRingCentre(const Plane& lightness, const SampleFace& face) {
+    const std::optional<RingCentre> found = ringCentre(lightness);
+    if (!found) return std::nullopt;
+    const Plane blurred = gaussianFilter(lightness, 5);
+    PixelEllipse outline;
+    FaceKnot k = measureKnot(lightness, blurred, face, *found, outline);
+    if (outline.roundness >= kRoundEnough) return k;
+    // An oval: its normals do not meet at its centre. Found again with the oval squeezed
+    // round, and kept if its rings point at one place more clearly so.
+    const Plane round = unstretched(lightness, found->centre, outline);
+    const std::optional<RingCentre> again = ringCentre(round);
+    if (!again || again->evidence <= found->evidence) return k;
+    RingCentre back = *again;
+    back.centre = stretchedBack(again->centre, found->centre, outline);
+    const double last = lightness.width - 1;
+    if (!(back.centre[0] >= 0 && back.centre[0] <= last && back.centre[1] >= 0 &&
+          back.centre[1] <= last))
+        return k;
+    PixelEllipse unused;
+    FaceKnot oval = measureKnot(lightness, blurred, face, back, unused);
+    // Its rings' spacing across the branch: along the squeezed image's radius.
+    const double pixel = 0.5 * (length(face.right) + length(face.up)) / last;
+    oval.ringSpacing =
+        ringSpacing(round, again->centre, int(std::min(oval.radius / pixel, 30.0))) * pixel;
+    return oval;
+}
+
 bool looksLikeKnot(const FaceKnot& k, const PithLine* pith) {
-    return k.evidence >= kMinEvidence && k.coverage >= kMinCoverage &&
-           k.darkening >= kMinDarkening && !(pith && ringRadius(*pith, k.centre) < kPithClearance);
+    const bool ringed =
+        k.evidence >= kMinEvidence && k.coverage >= kMinCoverage && k.darkening >= kMinDarkening;
+    const bool darkPatch = k.evidence >= kMinDarkPatchEvidence &&
+                           k.coverage >= kMinDarkPatchCoverage &&
+                           k.darkening >= kMinDarkPatchDarkening;
+    return (ringed || darkPatch) && !(pith && ringRadius(*pith, k.centre) < kPithClearance);
 }
 
 std::optional<FaceKnot> findFaceKnot(const Plane& lightness, const SampleFace& face,

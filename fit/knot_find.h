@@ -40,8 +40,9 @@ struct FaceKnot {
 std::optional<FaceKnot> strongestRingCentre(const Plane& lightness, const SampleFace& face);
 
 /// A knot's rings point at one centre from at least 5 eighths of a turn, with the votes' peak
-/// 4.5 times their mean, and its centre is darker than the face. With a pith line, centres
-/// within 10 mm of it are the pith itself (an end-grain face through the pith), not knots.
+/// 4.5 times their mean, and its centre is darker than the face (5 L*); or it is a dark patch
+/// (15 L*) that the rings circle all round (7 eighths, peak 3 times the mean). With a pith line,
+/// centres within 10 mm of it are the pith itself (an end-grain face through the pith), not knots.
 bool looksLikeKnot(const FaceKnot& centre, const PithLine* pith);
 
 /// The clearest knot on a face, or none.
