@@ -269,6 +269,23 @@ nlohmann::json knotJson(const FaceKnot& k) {
             {"long_axis", pointJson(k.longAxis)}};
 }
 
+double meanRingWidth(const RadialRings& profile) {
+    const std::vector<double>& b = profile.boundaries;
+    return (b.back() - b.front()) / double(std::max<size_t>(1, b.size() - 1));
+}
+
+/// The faces to read the ring series on: those without a knot, if any (a knot's dark wood
+/// and its own rings make the clearest strip, and the wrong one).
+std::vector<FacePhoto> ringFaces(const std::vector<FacePhoto>& fitted,
+                                 const std::vector<FaceKnot>& knots) {
+    std::vector<FacePhoto> plain;
+    for (const FacePhoto& p : fitted)
+        if (std::none_of(knots.begin(), knots.end(),
+                         [&](const FaceKnot& k) { return k.face == p.face->name; }))
+            plain.push_back(p);
+    return plain.empty() ? fitted : plain;
+}
+
 /// --leave-out names faces of the sample, and not all of them.
 void checkHeldOut(const Sample& sample, const FitOptions& options) {
     for (const std::string& name : options.heldOut)
@@ -286,12 +303,44 @@ void checkHeldOut(const Sample& sample, const FitOptions& options) {
 /// The skeleton: the trunk along the pith line and a branch for each knot (or pair of faces'
 /// knots).
 void placeBranches(WoodFit& fit, const std::vector<FaceKnot>& knots, const Sample& sample) {
-    const std::vector<double>& b = fit.profile.boundaries;
-    const double ringWidth = (b.back() - b.front()) / double(std::max<size_t>(1, b.size() - 1));
-    fit.branches = knotBranches(knots, fit.pith, sample.faces,
-                                fit.pith.distance + length(sample.size) + 0.01, ringWidth);
+    const std::vector<KnotBranch> sized = fit.branches;
+    fit.branches =
+        knotBranches(knots, fit.pith, sample.faces, fit.pith.distance + length(sample.size) + 0.01,
+                     meanRingWidth(fit.profile));
+    // Branches placed again keep the sizes found for them.
+    for (KnotBranch& b : fit.branches)
+        for (const KnotBranch& old : sized)
+            if (old.faces == b.faces) b.gamma = old.gamma, b.birth = old.birth;
     fit.skeleton = pithSkeleton(fit.pith, fit.profile);
     addKnotBranches(fit.skeleton, fit.branches);
+}
+
+/// Rounds of knot sizing.
+constexpr int kKnotSizeRounds = 2;
+
+/// Moves each branch's birth so that its knot in the bake of the face that sized it is as
+/// large as in the photo: the knot's radius is about gamma (r - t w) (eq. 3', w the ring
+/// width), so t moves by the radii's difference over gamma w. (The radius the knot finder
+/// measures is its dark wood's, inside the branch's share: the first estimate of t makes the
+/// knots too small.) Leaves the skeleton rebuilt.
+void sizeKnots(WoodFit& fit, const std::vector<FacePhoto>& photos, const FitOptions& options) {
+    const double ringWidth = meanRingWidth(fit.profile);
+    for (int round = 0; round < kKnotSizeRounds; ++round) {
+        const GrownTree tree(Skeleton(fit.skeleton), parseGrain(fit.grain, "the fitted grain"));
+        const WoodShader shader(tree.field());
+        for (KnotBranch& b : fit.branches)
+            for (const FacePhoto& p : photos) {
+                if (p.face->name != b.sizedBy) continue;
+                const FaceFigures f = measureFace(shader, fit.skeleton, p, options);
+                const std::optional<FaceKnot> baked =
+                    strongestRingCentre(bakedLightness(f), *p.face);
+                if (!baked || length(baked->centre - b.sizedAt) > b.radius) continue;
+                b.birth =
+                    std::max(0.0, b.birth - (b.radius - baked->radius) / (b.gamma * ringWidth));
+            }
+        fit.skeleton = pithSkeleton(fit.pith, fit.profile);
+        addKnotBranches(fit.skeleton, fit.branches);
+    }
 }
 
 }  // namespace
@@ -340,7 +389,7 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
     }
     fit.warp = fitRingWarp(fitted, fit.pith);
     progress.advance();
-    fit.profile = measureRadialRings(fitted, fit.pith, fit.warp, sample.file);
+    fit.profile = measureRadialRings(ringFaces(fitted, knots), fit.pith, fit.warp, sample.file);
     progress.advance();
     if (fit.profile.evenRings)
         fit.warnings.push_back(fmt::format(
@@ -364,6 +413,10 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
         const double score = textureMisfit(faces);
         if (score < bestScore)
             bestScore = score, fit.grain = grain, fit.faces = faces, fit.base = base;
+    }
+    if (!fit.branches.empty()) {
+        sizeKnots(fit, photos, options);
+        fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 0);
     }
     std::vector<FaceKnot> aimed = knots;
     if (aimKnots(aimed, knotFigures(photos, fit.faces, fit.pith))) {
