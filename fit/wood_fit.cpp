@@ -258,8 +258,7 @@ nlohmann::json pointJson(const Vec3& p) {
 nlohmann::json knotJson(const FaceKnot& k) {
     return {{"column", rounded(k.column, 0.01)},
             {"row", rounded(k.row, 0.01)},
-            {"centre",
-             {rounded(k.centre.x, 1e-6), rounded(k.centre.y, 1e-6), rounded(k.centre.z, 1e-6)}},
+            {"centre", pointJson(k.centre)},
             {"radius_mm", rounded(k.radius * 1e3, 0.01)},
             {"evidence", rounded(k.evidence, 0.01)},
             {"coverage", k.coverage},
@@ -335,8 +334,9 @@ void sizeKnots(WoodFit& fit, const std::vector<FacePhoto>& photos, const FitOpti
                 const std::optional<FaceKnot> baked =
                     strongestRingCentre(bakedLightness(f), *p.face);
                 if (!baked || length(baked->centre - b.sizedAt) > b.radius) continue;
-                b.birth =
-                    std::max(0.0, b.birth - (b.radius - baked->radius) / (b.gamma * ringWidth));
+                // (Not past the year the trunk's bark reached the knot: it would vanish.)
+                b.birth = std::clamp(b.birth - (b.radius - baked->radius) / (b.gamma * ringWidth),
+                                     0.0, ringRadius(fit.pith, b.sizedAt) / ringWidth);
             }
         fit.skeleton = pithSkeleton(fit.pith, fit.profile);
         addKnotBranches(fit.skeleton, fit.branches);
