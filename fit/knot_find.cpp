@@ -163,6 +163,25 @@ int coverage(const Orientation& o, const std::array<double, 2>& centre) {
                      : 0;
 }
 
+/// The plane's values summed over rings 1 px wide round a centre (radius rounded), out to
+/// `reach` px.
+struct RingMeans {
+    std::vector<double> sum, count;
+    double mean(size_t r) const { return count[r] > 0 ? sum[r] / count[r] : 0; }
+};
+RingMeans ringMeans(const Plane& plane, const std::array<double, 2>& centre, int reach) {
+    RingMeans rings{std::vector<double>(size_t(reach) + 1, 0.0),
+                    std::vector<double>(size_t(reach) + 1, 0.0)};
+    for (int y = 0; y < plane.height; ++y)
+        for (int x = 0; x < plane.width; ++x) {
+            const int r = int(std::lround(std::hypot(x - centre[0], y - centre[1])));
+            if (r > reach) continue;
+            rings.sum[size_t(r)] += plane.at(x, y);
+            rings.count[size_t(r)] += 1;
+        }
+    return rings;
+}
+
 struct DarkWood {
     double radius = 0;  ///< pixels
     double edge = 0;    ///< the lightness of its edge
@@ -172,24 +191,17 @@ struct DarkWood {
 /// halfway from the centre's up to the lightest ring's within reach: the edge of the dark knot
 /// wood (the lightest ring, not the face's median: a knot darkens the wood around it too).
 DarkWood darkWood(const Plane& blurred, const std::array<double, 2>& centre) {
-    std::array<double, kVoteReach + 1> sum{}, count{};
-    for (int y = 0; y < blurred.height; ++y)
-        for (int x = 0; x < blurred.width; ++x) {
-            const int r = int(std::lround(std::hypot(x - centre[0], y - centre[1])));
-            if (r > kVoteReach) continue;
-            sum[size_t(r)] += blurred.at(x, y);
-            count[size_t(r)] += 1;
-        }
+    const RingMeans rings = ringMeans(blurred, centre, kVoteReach);
     double inner = 0, innerCount = 0, lightest = -1e300;
-    for (size_t r = 0; r < sum.size(); ++r) {
-        if (count[r] == 0) continue;
-        if (r < kVoteNear) inner += sum[r], innerCount += count[r];
-        lightest = std::max(lightest, sum[r] / count[r]);
+    for (size_t r = 0; r < rings.sum.size(); ++r) {
+        if (rings.count[r] == 0) continue;
+        if (r < kVoteNear) inner += rings.sum[r], innerCount += rings.count[r];
+        lightest = std::max(lightest, rings.mean(r));
     }
     if (innerCount == 0) return {};
     const double half = 0.5 * (inner / innerCount + lightest);
-    for (size_t r = 1; r < sum.size(); ++r)
-        if (count[r] > 0 && sum[r] / count[r] >= half) return {double(r), half};
+    for (size_t r = 1; r < rings.sum.size(); ++r)
+        if (rings.count[r] > 0 && rings.mean(r) >= half) return {double(r), half};
     return {kVoteReach, half};
 }
 
@@ -275,16 +287,9 @@ Plane unstretched(const Plane& image, const std::array<double, 2>& centre, const
 /// the mean lightness of 1 px rings, less its 9 px running mean, at least 3 px apart and
 /// 0.3 L* deep; 0 with fewer than 3.
 double ringSpacing(const Plane& lightness, const std::array<double, 2>& centre, int reach) {
-    std::vector<double> sum(size_t(reach) + 1, 0.0), count(size_t(reach) + 1, 0.0);
-    for (int y = 0; y < lightness.height; ++y)
-        for (int x = 0; x < lightness.width; ++x) {
-            const int r = int(std::lround(std::hypot(x - centre[0], y - centre[1])));
-            if (r > reach) continue;
-            sum[size_t(r)] += lightness.at(x, y);
-            count[size_t(r)] += 1;
-        }
-    std::vector<double> profile(sum.size(), 0.0), detrended(sum.size(), 0.0);
-    for (size_t r = 0; r < sum.size(); ++r) profile[r] = count[r] > 0 ? sum[r] / count[r] : 0;
+    const RingMeans rings = ringMeans(lightness, centre, reach);
+    std::vector<double> profile(rings.sum.size(), 0.0), detrended(rings.sum.size(), 0.0);
+    for (size_t r = 0; r < profile.size(); ++r) profile[r] = rings.mean(r);
     for (int r = 0; r <= reach; ++r) {
         double s = 0, n = 0;
         for (int q = std::max(0, r - 4); q <= std::min(reach, r + 4); ++q)

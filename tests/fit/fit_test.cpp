@@ -265,16 +265,21 @@ TEST(WoodFit, RecoversThePithAndTheRingWidthsOfABakedCube) {
     EXPECT_TRUE(fit.knots.empty());
 }
 
-TEST(WoodFit, PutsTheBranchOfABakedKnotThroughBothFacesItCrosses) {
-    const SyntheticSample truth = bakeSyntheticSample(scratch("knot"), true);
-    const Sample sample = loadSampleFile(truth.file.string());
+/// Two threads, quiet, the anatomy (and the knots' junction) of the hinoki preset.
+FitOptions hinokiOptions() {
     FitOptions options;
     options.threads = 2;
     options.quiet = true;
-    // The knot's flanks are the junction's (eq. 5): from the grain it was baked with.
     options.baseGrains = {
         (fs::path(NENRIN_SOURCE_DIR) / "scenes/grain/species/hinoki.json").string()};
-    const WoodFit fit = fitSample(sample, options);
+    return options;
+}
+
+TEST(WoodFit, PutsTheBranchOfABakedKnotThroughBothFacesItCrosses) {
+    const SyntheticSample truth = bakeSyntheticSample(scratch("knot"), true);
+    const Sample sample = loadSampleFile(truth.file.string());
+    // The knot's flanks are the junction's (eq. 5): from the grain it was baked with.
+    const WoodFit fit = fitSample(sample, hinokiOptions());
     ASSERT_EQ(fit.branches.size(), 1u);
     EXPECT_EQ(fit.branches[0].faces.size(), 2u) << "one branch through both faces";
     ASSERT_EQ(fit.knots.size(), 2u) << "the knot is seen on C and F and nowhere else";
@@ -311,12 +316,7 @@ TEST(WoodFit, PutsTheBranchOfABakedKnotThroughBothFacesItCrosses) {
 TEST(WoodFit, PutsTheKnotOfHinokiH11WhereThePhotosShowIt) {
     SKIP_WITHOUT_MOKUME();
     const Sample sample = loadSampleFile((kMokume / "H11/sample.json").string());
-    FitOptions options;
-    options.threads = 2;
-    options.quiet = true;
-    options.baseGrains = {
-        (fs::path(NENRIN_SOURCE_DIR) / "scenes/grain/species/hinoki.json").string()};
-    const WoodFit fit = fitSample(sample, options);
+    const WoodFit fit = fitSample(sample, hinokiOptions());
     // One branch through both faces the knot crosses (marked in C_knot.png and F_knot.png).
     ASSERT_EQ(fit.branches.size(), 1u);
     EXPECT_EQ(fit.branches[0].faces.size(), 2u);
