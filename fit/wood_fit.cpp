@@ -124,7 +124,9 @@ FaceFigures measureFace(const WoodShader& shader, const Skeleton& skeleton, cons
     const RingAgreement rings = ringAgreement(photo.lightness, growthTime, face.image);
     f.ringMedianDeg = rings.medianDeg;
     f.ringWithin15 = rings.within15;
-    const ImageStatistics baked = roundedAsReported(imageStatistics(labPlanes(rgb)));
+    const std::array<Plane, 3> bakedLab = labPlanes(rgb);
+    f.lightness = bakedLab[0];
+    const ImageStatistics baked = roundedAsReported(imageStatistics(bakedLab));
     const ImageStatistics photographed =
         roundedAsReported(imageStatistics(labPlanes(photo.linear)));
     const StatisticsAgainst against = statisticsAgainst(baked, photographed, face.image);
@@ -163,18 +165,6 @@ std::vector<FaceFigures> calibrateColours(nlohmann::json& grain, const Skeleton&
     }
 }
 
-/// The bake's L*.
-Plane bakedLightness(const FaceFigures& f) {
-    std::array<Plane, 3> rgb;
-    for (int c = 0; c < 3; ++c) {
-        rgb[size_t(c)] = Plane(f.bake.width, f.bake.height);
-        for (int y = 0; y < f.bake.height; ++y)
-            for (int x = 0; x < f.bake.width; ++x)
-                rgb[size_t(c)].at(x, y) = std::max(0.0f, f.bake.at(x, y)[c]);
-    }
-    return labPlanes(rgb)[0];
-}
-
 /// How far the bakes' texture is from the photos': the squared logarithms of the fine and mid
 /// energy ratios, summed over the fitted faces.
 double textureMisfit(const std::vector<FaceFigures>& faces) {
@@ -187,12 +177,24 @@ double textureMisfit(const std::vector<FaceFigures>& faces) {
     return sum;
 }
 
-/// The knots the photos show, one per face at most.
-std::vector<FaceKnot> seenKnots(std::span<const FacePhoto> photos, const PithLine& pith) {
+/// Each photograph's strongest ring centre, found once (whether it is a knot depends on the
+/// pith line, which the knots move).
+using RingCentres = std::vector<std::optional<FaceKnot>>;
+RingCentres ringCentres(std::span<const FacePhoto> photos) {
+    RingCentres centres;
+    for (const FacePhoto& p : photos) centres.push_back(strongestRingCentre(p.lightness, *p.face));
+    return centres;
+}
+
+/// The knots the fitted photos show, one per face at most.
+std::vector<FaceKnot> seenKnots(const RingCentres& centres, const PithLine& pith,
+                                const FitOptions& options) {
     std::vector<FaceKnot> knots;
-    for (const FacePhoto& p : photos)
-        if (std::optional<FaceKnot> k = findFaceKnot(p.lightness, *p.face, &pith))
-            knots.push_back(*k);
+    for (const std::optional<FaceKnot>& c : centres)
+        if (c && looksLikeKnot(*c, &pith) &&
+            std::find(options.heldOut.begin(), options.heldOut.end(), c->face) ==
+                options.heldOut.end())
+            knots.push_back(*c);
     return knots;
 }
 
@@ -217,17 +219,15 @@ void maskKnots(std::vector<FacePhoto>& photos, std::span<const FaceKnot> knots) 
 }
 
 /// Every face whose photograph shows a knot, with the bake's ring centre there.
-std::vector<KnotFigures> knotFigures(std::span<const FacePhoto> photos,
+std::vector<KnotFigures> knotFigures(std::span<const FacePhoto> photos, const RingCentres& centres,
                                      const std::vector<FaceFigures>& faces, const PithLine& pith) {
     std::vector<KnotFigures> knots;
     for (size_t i = 0; i < photos.size(); ++i) {
-        const std::optional<FaceKnot> seen =
-            findFaceKnot(photos[i].lightness, *photos[i].face, &pith);
-        if (!seen) continue;
+        if (!centres[i] || !looksLikeKnot(*centres[i], &pith)) continue;
         KnotFigures k;
         k.heldOut = faces[i].heldOut;
-        k.photo = *seen;
-        k.baked = strongestRingCentre(bakedLightness(faces[i]), *photos[i].face);
+        k.photo = *centres[i];
+        k.baked = strongestRingCentre(faces[i].lightness, *photos[i].face);
         if (k.baked) k.offsetMm = 1e3 * length(k.baked->centre - k.photo.centre);
         knots.push_back(k);
     }
@@ -331,8 +331,7 @@ void sizeKnots(WoodFit& fit, const std::vector<FacePhoto>& photos, const FitOpti
             for (const FacePhoto& p : photos) {
                 if (p.face->name != b.sizedBy) continue;
                 const FaceFigures f = measureFace(shader, fit.skeleton, p, options);
-                const std::optional<FaceKnot> baked =
-                    strongestRingCentre(bakedLightness(f), *p.face);
+                const std::optional<FaceKnot> baked = strongestRingCentre(f.lightness, *p.face);
                 if (!baked || length(baked->centre - b.sizedAt) > b.radius) continue;
                 // (Not past the year the trunk's bark reached the knot: it would vanish.)
                 b.birth = std::clamp(b.birth - (b.radius - baked->radius) / (b.gamma * ringWidth),
@@ -378,8 +377,8 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
             fit.pith.distance));
     // Knots: their rings circle their branches; left out of the pith, warp and ring fits, and
     // each made a branch of the skeleton.
-    const std::vector<FaceKnot> knots =
-        options.knots ? seenKnots(fitted, fit.pith) : std::vector<FaceKnot>{};
+    const RingCentres centres = options.knots ? ringCentres(photos) : RingCentres(photos.size());
+    const std::vector<FaceKnot> knots = seenKnots(centres, fit.pith, options);
     if (!knots.empty()) {
         maskKnots(fitted, knots);
         // Fitted again without the knots' rings, kept if it fits the rest better (with few
@@ -419,7 +418,7 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 0);
     }
     std::vector<FaceKnot> aimed = knots;
-    if (aimKnots(aimed, knotFigures(photos, fit.faces, fit.pith))) {
+    if (aimKnots(aimed, knotFigures(photos, centres, fit.faces, fit.pith))) {
         placeBranches(fit, aimed, sample);
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
     } else if (bases.size() > 1) {
@@ -431,7 +430,7 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
         if (!matchKnotColour(fit.grain, fit.faces)) break;
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 0);
     }
-    if (options.knots) fit.knots = knotFigures(photos, fit.faces, fit.pith);
+    fit.knots = knotFigures(photos, centres, fit.faces, fit.pith);
     if (options.baseGrains.empty())
         fit.warnings.push_back(
             "no base grain (--grain): the bakes carry no anatomy (fibres, pores, rays); give "

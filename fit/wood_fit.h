@@ -43,6 +43,7 @@ struct FaceFigures {
     double ringWithin15 = 0;   ///< share within 15 degrees
     double dE = 0, fineRatio = 0, midRatio = 0;
     BakedGrid bake;              ///< 256 x 256: R, G, B, A, T, knot
+    Plane lightness;             ///< the bake's L*
     std::array<Plane, 3> photo;  ///< the photograph at 256 x 256, scene-linear
 };
 
