@@ -22,12 +22,35 @@ struct DenoiseArguments {
     DenoiseOptions options;
 };
 
+/// A render from before the visibility AOV: the channel added as 1 everywhere (no shadow edge
+/// to guide by), with a note. Whether anything else is missing orderChannels says.
+void addVisibilityIfMissing(FloatExr& image, const std::string& path) {
+    const auto& c = image.channels;
+    if (std::find(c.begin(), c.end(), "visibility") != c.end() ||
+        std::find(c.begin(), c.end(), "variance") == c.end())
+        return;
+    const size_t n = c.size();
+    std::vector<float> pixels;
+    pixels.reserve(image.pixels.size() / n * (n + 1));
+    for (size_t i = 0; i + n <= image.pixels.size(); i += n) {
+        pixels.insert(pixels.end(), image.pixels.begin() + i, image.pixels.begin() + i + n);
+        pixels.push_back(1.0f);
+    }
+    image.pixels = std::move(pixels);
+    image.channels.push_back("visibility");
+    fmt::print(
+        "{} has no visibility AOV (rendered by an older nenrin): shadow edges are not "
+        "guided\n",
+        path);
+}
+
 void runDenoise(const DenoiseArguments& a) {
     checkOutputName(a.output, {".exr"});
     if (!a.png.empty()) checkOutputName(a.png, {".png"});
     FloatExr image = readFloatExr(a.input);
     const bool adaptive =
         std::find(image.channels.begin(), image.channels.end(), "samples") != image.channels.end();
+    addVisibilityIfMissing(image, a.input);
     orderChannels(image, filmChannelNames(adaptive), a.input);
     if (image.band.begin != 0 || (image.band.end != -1 && image.band.end != image.height))
         throw InputError(a.input, "data window",
@@ -77,6 +100,16 @@ void addDenoiseCommand(CLI::App& app) {
                     "Depth differences smoothed, in units of the depth's slope over the distance")
         ->check(CLI::Range(0.01, 100.0))
         ->default_val(a->options.sigmaDepth);
+    cmd->add_option("--sigma-visibility", a->options.sigmaVisibility,
+                    "Differences in the share of the first hit's direct light not blocked "
+                    "(shadow edges) smoothed")
+        ->check(CLI::Range(0.001, 100.0))
+        ->default_val(a->options.sigmaVisibility);
+    cmd->add_option("--sigma-albedo", a->options.sigmaAlbedo,
+                    "Albedo differences smoothed, relative to the pixel's albedo (boards, knots "
+                    "and rings under a glossy finish)")
+        ->check(CLI::Range(0.001, 100.0))
+        ->default_val(a->options.sigmaAlbedo);
     cmd->add_option("--threads", a->options.threads, "Worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024))
         ->default_val(0);

@@ -60,9 +60,10 @@ void addRenderCommand(CLI::App& app) {
         ->check(CLI::Range(0LL, 1LL << 53));
     cmd->add_option("--png", o->png, "Also write an 8-bit sRGB preview through OpenColorIO");
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
-    cmd->add_flag("--denoise", o->denoise,
-                  "Denoise the image before it is written: the edge-avoiding a-trous filter "
-                  "guided by the albedo, normal, depth and variance AOVs (docs/denoise.md)");
+    cmd->add_flag(
+        "--denoise", o->denoise,
+        "Denoise the image before it is written: the edge-avoiding a-trous filter "
+        "guided by the albedo, normal, depth, visibility and variance AOVs (docs/denoise.md)");
     addMaxMemoryOption(cmd);
     cmd->add_option("--tile", arguments->tile,
                     "K/N: render only part K of N (a band of whole 16-pixel tile rows) into a "

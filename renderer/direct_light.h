@@ -34,6 +34,7 @@ struct ShadowRay {
     double tMax;
     Rgb contribution;  ///< throughput x light sample: added to the path if nothing blocks it
     bool blocked = false;
+    bool camera = false;  ///< made at the camera ray's hit (the film's visibility AOV counts it)
 };
 
 /// A path vertex on a surface, as next-event estimation sees it.

@@ -22,12 +22,13 @@ void Film::resize(int w, int h, int first, int count) {
     knot.assign(n, 0);
     lamella.assign(n, -1);
     variance.assign(n, 0);
+    visibility.assign(n, 1);
 }
 
 std::vector<std::string> filmChannelNames(bool adaptive) {
-    std::vector<std::string> names = {"R",        "G",        "B",    "A",       "albedo.R",
-                                      "albedo.G", "albedo.B", "N.X",  "N.Y",     "N.Z",
-                                      "Z",        "T",        "knot", "lamella", "variance"};
+    std::vector<std::string> names = {
+        "R",   "G",   "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X",
+        "N.Y", "N.Z", "Z", "T", "knot",     "lamella",  "variance", "visibility"};
     if (adaptive) names.push_back("samples");
     return names;
 }
@@ -36,7 +37,8 @@ std::string filmChannelDescription(bool adaptive) {
     std::string text =
         "R,G,B: scene-linear radiance; A: coverage; albedo; N: world normal; Z: depth along "
         "the view axis (m); T: growth time (years); knot: 0..1; lamella: board id or -1; "
-        "variance: of the pixel's mean luminance";
+        "variance: of the pixel's mean luminance; visibility: share of the first hit's direct "
+        "light not blocked";
     if (adaptive) text += "; samples: samples the pixel took";
     return text;
 }
@@ -58,7 +60,7 @@ auto filmPlanes(F& film) {
         {film.albedo.data() + 2, 3}, {film.normal.data(), 3},  {film.normal.data() + 1, 3},
         {film.normal.data() + 2, 3}, {film.depth.data(), 1},   {film.growthTime.data(), 1},
         {film.knot.data(), 1},       {film.lamella.data(), 1}, {film.variance.data(), 1},
-        {film.samples.data(), 1}};
+        {film.visibility.data(), 1}, {film.samples.data(), 1}};
 }
 
 }  // namespace

@@ -10,6 +10,9 @@
 ///   lamella      id of the board at the first sample's hit, -1 if none (not laminated)
 ///   variance     variance of the pixel's mean luminance: the samples' luminance variance
 ///                over their count (0 for one sample); what a denoiser trusts the pixel by
+///   visibility   share of the first hit's direct light that reached it: the luminance of its
+///                unblocked light samples over all of them (1 where none was taken); shadow
+///                edges, which the other AOVs do not see, for the denoiser
 ///   samples      samples the pixel took (adaptive sampling only)
 /// Each AOV but lamella is the mean over the samples that contribute to it (hits for albedo,
 /// N and Z, wood hits for T and knot); 0 where none did.
@@ -25,7 +28,7 @@ struct Film {
     /// The rows the film holds: all of them, unless a split job (--tile) renders a band.
     int firstRow = 0, rows = 0;
     std::vector<float> rgb, albedo, normal;  ///< 3 per pixel, row firstRow first
-    std::vector<float> alpha, depth, growthTime, knot, lamella, variance;
+    std::vector<float> alpha, depth, growthTime, knot, lamella, variance, visibility;
     std::vector<float> samples;  ///< per pixel; empty unless sampling was adaptive
 
     /// A frame of w x h holding rows [first, first + count) (count < 0: to the bottom).

@@ -38,6 +38,7 @@ void TileAovs::writeInto(Film& film, int x0, int y0, int tw, int th,
                 film.knot[f] = float(knot[p] / woodHits[p]);
             }
             film.lamella[f] = float(lamella[p]);
+            film.visibility[f] = directAll[p] > 0 ? float(directUnblocked[p] / directAll[p]) : 1;
         }
     }
 }

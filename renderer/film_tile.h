@@ -21,7 +21,9 @@ struct TileAovs {
     std::vector<Vec3> normal;
     std::vector<double> hits, depth, woodHits, growthTime, knot;
     std::vector<double> luminanceSquares;  ///< sum over the samples of luminance squared
-    std::vector<int32_t> lamella;          ///< the board the pixel's first sample hit, -1 if none
+    /// Luminance of the camera hits' light samples: those nothing blocked, and all of them.
+    std::vector<double> directUnblocked, directAll;
+    std::vector<int32_t> lamella;  ///< the board the pixel's first sample hit, -1 if none
 
     explicit TileAovs(size_t n)
         : rgb(n),
@@ -33,6 +35,8 @@ struct TileAovs {
           growthTime(n),
           knot(n),
           luminanceSquares(n),
+          directUnblocked(n),
+          directAll(n),
           lamella(n, -1) {}
 
     /// A finished sample's radiance.
@@ -55,6 +59,12 @@ struct TileAovs {
         albedo[pixel] = albedo[pixel] + surfaceAlbedo;
         normal[pixel] += shadingNormal;
         depth[pixel] += viewDepth;
+    }
+    /// A light sample at a camera ray's hit, blocked or not.
+    void addDirect(uint32_t pixel, const Rgb& contribution, bool blocked) {
+        const double y = luminance(contribution);
+        directAll[pixel] += y;
+        if (!blocked) directUnblocked[pixel] += y;
     }
     /// A camera ray that found wood.
     void addWoodHit(uint32_t pixel, double T, double knotShare) {

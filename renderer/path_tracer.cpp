@@ -282,9 +282,11 @@ void TileRenderer::traceShadows(TileAovs& aovs) {
     size_t next = 0;
     for (uint32_t i = 0; i < paths_.size(); ++i) {
         PathState& path = paths_[i];
-        for (; next < shadows_.size() && shadows_[next].path == i; ++next)
-            if (!shadows_[next].blocked)
-                path.radiance = path.radiance + shadows_[next].contribution;
+        for (; next < shadows_.size() && shadows_[next].path == i; ++next) {
+            const ShadowRay& shadow = shadows_[next];
+            if (!shadow.blocked) path.radiance = path.radiance + shadow.contribution;
+            if (shadow.camera) aovs.addDirect(path.pixel, shadow.contribution, shadow.blocked);
+        }
         if (!finished_[i]) continue;
         aovs.addRadiance(path.pixel, path.radiance);
         sampling_.addSample(path.pixel, path.sample, path.radiance);
@@ -342,8 +344,11 @@ void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
                            .woLocal = woLocal,
                            .throughput = path.throughput,
                            .continues = path.depth + 1 < scene_.settings.maxDepth};
+    const size_t firstShadow = shadows_.size();
     directLight_.sample(vertex, random, shareable ? shared_.lightValues() : std::span<Rgb>(), index,
                         shadows_);
+    if (camera)
+        for (size_t k = firstShadow; k < shadows_.size(); ++k) shadows_[k].camera = true;
 
     if (!bounce(path, surface, ng, woLocal, random)) finish(index, path);
 }

@@ -19,6 +19,8 @@ struct Guides {
     std::vector<float> demodulate;  ///< 3 per pixel: the albedo the radiance is divided by
     std::vector<float> normal;      ///< 3 per pixel, unit (0 without a hit)
     std::vector<float> depth, depthSlope;
+    std::vector<float> visibility;  ///< the first hit's unblocked share of its direct light
+    std::vector<float> albedo;      ///< the luminance of `demodulate`
     std::vector<uint8_t> hit;
 };
 
@@ -30,6 +32,8 @@ Guides guidesOf(const Film& film) {
     g.demodulate.assign(3 * n, 1.0f);
     g.normal.assign(3 * n, 0.0f);
     g.depth = film.depth;
+    g.visibility = film.visibility;
+    g.albedo.assign(n, 1.0f);
     g.depthSlope.assign(n, 0.0f);
     g.hit.assign(n, 0);
     for (size_t i = 0; i < n; ++i) {
@@ -38,6 +42,7 @@ Guides guidesOf(const Film& film) {
         // A floor under the albedo keeps black surfaces from dividing by zero.
         for (int c = 0; c < 3; ++c)
             g.demodulate[3 * i + c] = std::max(film.albedo[3 * i + c], 0.01f);
+        g.albedo[i] = float(luminance(&g.demodulate[3 * i]));
         const float* nrm = &film.normal[3 * i];
         const double len = std::sqrt(double(nrm[0]) * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
         if (len > 0)
@@ -111,10 +116,11 @@ public:
                 if (qx < 0 || qy < 0 || qx >= g_.width || qy >= g_.height) continue;
                 const size_t q = size_t(qy) * g_.width + qx;
                 if (!g_.hit[q]) continue;
-                double w =
-                    kernel[i + 2] * kernel[j + 2] * edgeWeight(p, q, std::abs(i) + std::abs(j));
-                if (i != 0 || j != 0)
-                    w *= std::exp(-std::abs(lp - luminance(&light_[3 * q])) / noise);
+                double distance = edgeDistance(p, q, std::abs(i) + std::abs(j));
+                if (i != 0 || j != 0) distance += std::abs(lp - luminance(&light_[3 * q])) / noise;
+                // Past e^-40 a weight is nothing beside the centre's: one exp saved.
+                if (!(distance < 40)) continue;
+                const double w = kernel[i + 2] * kernel[j + 2] * std::exp(-distance);
                 for (int c = 0; c < 3; ++c) sum[c] += w * light_[3 * q + c];
                 weights += w;
                 varianceSum += w * w * variance_[q];
@@ -124,16 +130,28 @@ public:
     }
 
 private:
-    /// How much pixel q lies on p's surface: their normals' agreement and their depths'
-    /// difference against p's depth slope over the taps' distance.
-    double edgeWeight(size_t p, size_t q, int taps) const {
+    /// How much pixel q lies on p's surface, lit as p is: their normals' agreement, their
+    /// depths' difference against p's depth slope over the taps' distance, their shares of
+    /// direct light not blocked (a shadow's edge, which no other guide shows), and their
+    /// albedos' relative difference: the radiance over the albedo is not only the light where
+    /// a finish reflects (a gloss adds the same over dark and pale boards, so the quotient
+    /// steps at every board, knot and ring), and filtering across would smear those steps.
+    /// The weights multiply, so their logarithms add: returned is minus the log of
+    /// cos^exponent x exp(-depth term) x exp(-visibility term) x exp(-albedo term), one exp
+    /// for the lot (infinite where the normals are 90 degrees or more apart).
+    double edgeDistance(size_t p, size_t q, int taps) const {
         const double cosine = g_.normal[3 * p] * g_.normal[3 * q] +
                               g_.normal[3 * p + 1] * g_.normal[3 * q + 1] +
                               g_.normal[3 * p + 2] * g_.normal[3 * q + 2];
-        const double normal = std::pow(std::max(0.0, cosine), o_.normalExponent);
-        const double depth = std::exp(-std::abs(g_.depth[p] - g_.depth[q]) /
-                                      (o_.sigmaDepth * g_.depthSlope[p] * step_ * taps + 1e-9));
-        return normal * depth;
+        if (!(cosine > 0)) return HUGE_VAL;
+        const double normal = cosine < 1 ? -o_.normalExponent * std::log(cosine) : 0.0;
+        const double depth = std::abs(g_.depth[p] - g_.depth[q]) /
+                             (o_.sigmaDepth * g_.depthSlope[p] * step_ * taps + 1e-9);
+        const double visibility =
+            std::abs(g_.visibility[p] - g_.visibility[q]) / o_.sigmaVisibility;
+        const double albedo =
+            std::abs(g_.albedo[p] - g_.albedo[q]) / (o_.sigmaAlbedo * g_.albedo[p]);
+        return normal + depth + visibility + albedo;
     }
 
     const Guides& g_;
@@ -148,9 +166,11 @@ private:
 
 std::string denoiseDescription(const DenoiseOptions& o) {
     return "edge-avoiding a-trous wavelet, " + std::to_string(o.passes) +
-           " passes, guided by albedo, normal, depth and variance (sigma luminance " +
+           " passes, guided by albedo, normal, depth, visibility and variance (sigma luminance " +
            std::to_string(o.sigmaLuminance) + ", normal exponent " +
-           std::to_string(o.normalExponent) + ", sigma depth " + std::to_string(o.sigmaDepth) + ")";
+           std::to_string(o.normalExponent) + ", sigma depth " + std::to_string(o.sigmaDepth) +
+           ", sigma visibility " + std::to_string(o.sigmaVisibility) + ", sigma albedo " +
+           std::to_string(o.sigmaAlbedo) + ")";
 }
 
 void denoiseFilm(Film& film, const DenoiseOptions& options) {

@@ -5,9 +5,10 @@
 /// "Spatiotemporal Variance-Guided Filtering", HPG 2017 (its spatial part). The radiance is
 /// divided by the albedo AOV before filtering and multiplied by it after, so the wood's grain,
 /// which lives in the albedo, is carried by the guide and never blurred; the filter smooths the
-/// illumination, stopping at depth and normal edges and where luminance differs by more than
-/// the noise explains. Every pixel reads only the previous pass: the result does not depend on
-/// the thread count (docs/denoise.md).
+/// illumination, stopping at depth and normal edges, at shadow edges (the visibility AOV),
+/// between different albedos (a glossy finish's light over the albedo steps there) and where
+/// luminance differs by far more than the noise explains. Every pixel reads only the previous
+/// pass: the result does not depend on the thread count (docs/denoise.md).
 
 #include <string>
 
@@ -16,11 +17,13 @@
 namespace nenrin {
 
 struct DenoiseOptions {
-    int passes = 3;               ///< à-trous levels: taps 1, 2, 4 apart, reaching 14 pixels
-    double sigmaLuminance = 4;    ///< luminance differences in standard deviations of the noise
-    double normalExponent = 128;  ///< weight cos(angle between normals)^this
-    double sigmaDepth = 1;        ///< depth differences in units of the local depth slope
-    int threads = 0;              ///< 0 = all cores
+    int passes = 3;                ///< à-trous levels: taps 1, 2, 4 apart, reaching 14 pixels
+    double sigmaLuminance = 24;    ///< luminance differences in standard deviations of the noise
+    double normalExponent = 128;   ///< weight cos(angle between normals)^this
+    double sigmaDepth = 1;         ///< depth differences in units of the local depth slope
+    double sigmaVisibility = 0.1;  ///< differences in the share of direct light not blocked
+    double sigmaAlbedo = 0.07;     ///< albedo (luminance) differences relative to the pixel's
+    int threads = 0;               ///< 0 = all cores
 };
 
 /// The filter and its settings in words, for the EXR header (nenrin:denoised).

@@ -2,6 +2,8 @@
 // the image marked as denoised, a split part and an image denoised twice refused; the wood's
 // fine texture kept against a 4096-spp render.
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -47,6 +49,29 @@ TEST_F(DenoiseCliTest, RenderDenoiseEqualsDenoisingTheRender) {
     expectInputError(run(args({"-o", "part.exr", "--tile", "1/2", "--denoise"})),
                      {"--denoise", "nenrin denoise"});
     expectInputError(run({"denoise", kScene.string(), "-o", "x.exr"}), {"small-glulam.json"});
+}
+
+TEST_F(DenoiseCliTest, ARenderFromBeforeTheVisibilityAovIsDenoisedWithANote) {
+    auto r =
+        run({"render", kScene.string(), "-q", "--res", "48x32", "--spp", "4", "-o", "new.exr"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // The same render as an older nenrin wrote it: every channel but visibility.
+    OIIO::ImageBuf render((out_ / "new.exr").string());
+    std::vector<int> keep;
+    for (int c = 0; c < render.nchannels(); ++c)
+        if (render.spec().channelnames[size_t(c)] != "visibility") keep.push_back(c);
+    ASSERT_EQ(keep.size() + 1, size_t(render.nchannels()));
+    OIIO::ImageBuf old = OIIO::ImageBufAlgo::channels(render, int(keep.size()), keep);
+    ASSERT_TRUE(old.write((in_ / "old.exr").string()));
+    auto d = run({"denoise", (in_ / "old.exr").string(), "-o", "old-denoised.exr"});
+    ASSERT_EQ(d.exitCode, 0) << d.err;
+    EXPECT_NE(d.out.find("has no visibility AOV"), std::string::npos) << d.out;
+    auto out = readImage(out_ / "old-denoised.exr");
+    ASSERT_TRUE(out);
+    const int v = channelIndex(out->spec, "visibility");
+    ASSERT_GE(v, 0);
+    for (size_t i = size_t(v); i < out->pixels.size(); i += size_t(out->spec.nchannels))
+        ASSERT_EQ(out->pixels[i], 1.0f);
 }
 
 /// The second line of `nenrin stats IMAGE --against REF --json`: IMAGE's figures against REF's.

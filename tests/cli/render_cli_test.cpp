@@ -52,8 +52,8 @@ TEST_F(RenderCliTest, WritesExrWithAovsMetadataAndPngPreview) {
     ASSERT_TRUE(img);
     EXPECT_EQ(img->spec.width, 48);
     EXPECT_EQ(img->spec.height, 32);
-    for (const char* c :
-         {"R", "G", "B", "A", "albedo.R", "N.X", "Z", "T", "knot", "lamella", "variance"})
+    for (const char* c : {"R", "G", "B", "A", "albedo.R", "N.X", "Z", "T", "knot", "lamella",
+                          "variance", "visibility"})
         EXPECT_GE(channelIndex(img->spec, c), 0) << c;
     EXPECT_EQ(img->spec.get_string_attribute("nenrin:scene"), kRegressionScene.string());
     EXPECT_EQ(img->spec.get_string_attribute("nenrin:spp"), "2");
@@ -108,6 +108,44 @@ TEST_F(RenderCliTest, AdaptiveSamplingWritesWhereTheSamplesWentAndTheSameBytesOn
     EXPECT_LE(hi, 64.f);
     EXPECT_GT(hi, lo);  // the samples went where the noise was
     EXPECT_EQ(a->spec.get_string_attribute("nenrin:noise_threshold"), "0.1");
+}
+
+// The visibility AOV against a shadow whose edges are known: a 0.2 m square plate 0.5 m over
+// the floor, the sun at 45 degrees over +x, the camera 1 m over the floor looking straight
+// down (fov 20: the floor from -0.176 to 0.176 m either way; the plate outside the view). The
+// plate's shadow is |x| < 0.1005 (its 1 mm thickness), |z| < 0.1 m: columns 13.76 to 50.24 of
+// 64, rows 13.85 to 50.15.
+TEST_F(RenderCliTest, VisibilityIsTheShareOfTheSunThatReachesTheFirstHit) {
+    const fs::path p = writeScene("shadow.json", R"({
+  "camera": {"position": [0, 1, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 20},
+  "render": {"resolution": [64, 64], "spp": 64, "max_depth": 2},
+  "lights": [{"type": "sun", "direction": [1, 1, 0]}],
+  "materials": [{"name": "grey", "type": "diffuse", "colour": 0.5}],
+  "objects": [
+    {"type": "box", "size": [4, 0.1, 4], "position": [0, -0.05, 0], "material": "grey"},
+    {"type": "box", "size": [0.2, 0.001, 0.2], "position": [0.5, 0.5, 0], "material": "grey"}
+  ]})");
+    const fs::path out = out_ / "shadow.exr";
+    const RunResult r = render(p, {"-o", out.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto img = readImage(out);
+    ASSERT_TRUE(img);
+    const int v = channelIndex(img->spec, "visibility");
+    ASSERT_GE(v, 0);
+    const auto at = [&](int x, int y) {
+        return img->pixels[(size_t(y) * 64 + x) * img->spec.nchannels + v];
+    };
+    for (int y = 20; y < 44; ++y) {  // well inside the shadow's extent along z
+        for (int x = 0; x < 64; ++x) {
+            if (x == 13 || x == 50) {  // three quarters of the pixel lit
+                EXPECT_NEAR(at(x, y), 0.76, 0.1) << x << "," << y;
+            } else {
+                EXPECT_EQ(at(x, y), x > 13 && x < 50 ? 0.f : 1.f) << x << "," << y;
+            }
+        }
+    }
+    EXPECT_NEAR(at(32, 13), 0.85, 0.1);  // the shadow's edge along z
+    EXPECT_EQ(at(32, 2), 1.f);
 }
 
 TEST_F(RenderCliTest, BadAdaptiveSamplingSettingsAreRejected) {

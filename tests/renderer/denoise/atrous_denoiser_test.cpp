@@ -61,6 +61,16 @@ double texture(const Film& f) {
     return s / double(n);
 }
 
+/// The mean error of column x's green over rows 8..55 (a step's bleed shows there).
+double columnError(const Film& film, const Film& truth, int x) {
+    double error = 0;
+    for (int y = 8; y < 56; ++y) {
+        const size_t i = size_t(y) * film.width + x;
+        error += (film.rgb[3 * i + 1] - truth.rgb[3 * i + 1]) / 48;
+    }
+    return error;
+}
+
 TEST(Denoise, NoiseGoesAndTheTextureStays) {
     Film truth;
     Film film = noisyFilm(
@@ -85,13 +95,22 @@ TEST(Denoise, LightDoesNotBleedAcrossAnEdge) {
         }
     denoiseFilm(film);  // without the normal weight: 0.012 and 0.015
     // Along the edge, on both sides: the mean error of the row of pixels.
+    for (int x : {47, 48}) EXPECT_LT(std::abs(columnError(film, truth, x)), 0.006) << x;
+}
+
+TEST(Denoise, AShadowsEdgeStaysSharp) {
+    // One plane, its right half in a shadow (light 1 -> 0.6: what the indirect light leaves);
+    // only the visibility AOV tells the halves apart.
+    Film truth;
+    auto light = [](int x) { return x < 48 ? 1.0 : 0.6; };
+    Film film = noisyFilm(96, 64, 0.05, 4, light, &truth);
+    Film blind = film;  // its visibility says nothing (1 everywhere, as where no light is sampled)
+    for (size_t i = 0; i < film.alpha.size(); ++i) film.visibility[i] = i % 96 < 48 ? 1 : 0;
+    denoiseFilm(film);
+    denoiseFilm(blind);
     for (int x : {47, 48}) {
-        double error = 0;
-        for (int y = 8; y < 56; ++y) {
-            const size_t i = size_t(y) * 96 + x;
-            error += (film.rgb[3 * i + 1] - truth.rgb[3 * i + 1]) / 48;
-        }
-        EXPECT_LT(std::abs(error), 0.006) << x;
+        EXPECT_LT(std::abs(columnError(film, truth, x)), 0.006) << x;
+        EXPECT_GT(std::abs(columnError(blind, truth, x)), 0.012) << x;  // it sees the bleed
     }
 }
 
