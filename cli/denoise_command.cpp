@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <memory>
 
 #include "renderer/colour_management.h"
@@ -21,6 +22,21 @@ struct DenoiseArguments {
     std::string input, output, png;
     DenoiseOptions options;
 };
+
+/// The render's spp (nenrin:spp), which tells the visibility AOV's noise; 0 if the header has
+/// none (a note says so), an InputError if it is not a count.
+double samplesPerPixel(const FloatExr& image, const std::string& path) {
+    const auto spp = image.metadata.find("spp");
+    if (spp == image.metadata.end()) {
+        fmt::print("{} has no nenrin:spp: the visibility AOV's noise is not allowed for\n", path);
+        return 0;
+    }
+    char* end = nullptr;
+    const double value = std::strtod(spp->second.c_str(), &end);
+    if (end == spp->second.c_str() || *end != '\0' || !(value >= 1 && value <= 1e9))
+        throw InputError(path, "nenrin:spp", "a sample count, found \"" + spp->second + "\"");
+    return value;
+}
 
 /// A render from before the visibility AOV: the channel added as 1 everywhere (no shadow edge
 /// to guide by), with a note. Whether anything else is missing orderChannels says.
@@ -58,12 +74,14 @@ void runDenoise(const DenoiseArguments& a) {
     Film film = filmFromExr(image, a.input);
     if (image.metadata.count("denoised"))
         throw InputError(a.input, "nenrin:denoised", "the image is denoised already");
+    DenoiseOptions options = a.options;
+    options.samples = samplesPerPixel(image, a.input);
     const auto start = std::chrono::steady_clock::now();
-    denoiseFilm(film, a.options);
+    denoiseFilm(film, options);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::map<std::string, std::string> metadata = image.metadata;
-    metadata["denoised"] = denoiseDescription(a.options);
+    metadata["denoised"] = denoiseDescription(options);
     writeFilmExr(film, a.output, metadata, a.options.threads);
     fmt::print("wrote {}\n", a.output);
     if (!a.png.empty()) {

@@ -24,6 +24,9 @@ struct DenoiseOptions {
     double sigmaVisibility = 0.1;  ///< differences in the share of direct light not blocked
     double sigmaAlbedo = 0.07;     ///< albedo (luminance) differences relative to the pixel's
     int threads = 0;               ///< 0 = all cores
+    /// Samples per pixel of the film (a render's spp; a film's own `samples` channel wins);
+    /// 0 = unknown: the visibility's noise is then not allowed for.
+    double samples = 0;
 };
 
 /// The filter and its settings in words, for the EXR header (nenrin:denoised).

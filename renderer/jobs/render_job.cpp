@@ -91,6 +91,7 @@ RenderJobReport runRenderJob(const RenderJob& job) {
         const auto start = std::chrono::steady_clock::now();
         DenoiseOptions denoise;
         denoise.threads = job.threads;
+        denoise.samples = s.spp;
         denoiseFilm(film, denoise);
         report.denoiseSeconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

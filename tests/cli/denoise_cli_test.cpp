@@ -72,6 +72,13 @@ TEST_F(DenoiseCliTest, ARenderFromBeforeTheVisibilityAovIsDenoisedWithANote) {
     ASSERT_GE(v, 0);
     for (size_t i = size_t(v); i < out->pixels.size(); i += size_t(out->spec.nchannels))
         ASSERT_EQ(out->pixels[i], 1.0f);
+    // Its spp (which tells the visibility's noise) must be a count.
+    old.specmod().attribute("nenrin:spp", "many");
+    ASSERT_TRUE(old.write((in_ / "bad-spp.exr").string()));
+    fs::remove(out_ / "new.exr");
+    fs::remove(out_ / "old-denoised.exr");
+    expectInputError(run({"denoise", (in_ / "bad-spp.exr").string(), "-o", "x.exr"}),
+                     {"bad-spp.exr", "nenrin:spp", "many"});
 }
 
 /// The second line of `nenrin stats IMAGE --against REF --json`: IMAGE's figures against REF's.

@@ -114,6 +114,25 @@ TEST(Denoise, AShadowsEdgeStaysSharp) {
     }
 }
 
+TEST(Denoise, ANoisyVisibilityDoesNotStopTheFilter) {
+    // Many lights, one picked per sample: a half-lit plane's visibility is a share of 32 coin
+    // tosses, noise and no edge. Knowing the samples, the filter takes it for noise.
+    Film truth;
+    Film film = noisyFilm(
+        96, 64, 0.05, 6, [](int) { return 1.0; }, &truth);
+    std::mt19937 rng(7);
+    std::binomial_distribution<int> tosses(32, 0.5);
+    for (float& v : film.visibility) v = float(tosses(rng)) / 32;
+    const double before = rmse(film, truth);
+    Film blind = film;
+    DenoiseOptions o;
+    o.samples = 32;
+    denoiseFilm(film, o);
+    denoiseFilm(blind);  // samples unknown: every visibility difference an edge
+    EXPECT_LT(rmse(film, truth), before / 4) << before;
+    EXPECT_GT(rmse(blind, truth), 1.3 * rmse(film, truth));
+}
+
 TEST(Denoise, BackgroundIsKeptAndThreadsDoNotMatter) {
     Film film = noisyFilm(64, 48, 0.05, 3, [](int x) { return 0.5 + x / 64.0; });
     for (size_t i = 0; i < film.alpha.size(); i += 7) film.alpha[i] = 0;  // sky seen here
