@@ -83,7 +83,7 @@ Film filmFromExr(const FloatExr& image, const std::string& file) {
 
 void writeFilmExr(const Film& film, const std::string& path,
                   const std::map<std::string, std::string>& metadata, int threads) {
-    // Straight from the film's planes: an interleaved copy of a 4K frame's 15 channels would
+    // Straight from the film's planes: an interleaved copy of a 4K frame's 16 channels would
     // be another half gigabyte.
     const std::vector<std::string> names = filmChannelNames(!film.samples.empty());
     const auto planes = filmPlanes(film);
