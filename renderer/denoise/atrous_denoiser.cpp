@@ -25,6 +25,7 @@ struct Guides {
     std::vector<float> demodulate;  ///< 3 per pixel: the albedo the radiance is divided by
     std::vector<float> normal;      ///< 3 per pixel, unit (0 without a hit)
     std::vector<float> depth, depthSlope;
+    std::vector<float> depthGradient;    ///< 2 per pixel: dz/dx, dz/dy (the smoother side's)
     std::vector<float> visibility;       ///< the first hit's unblocked share of its direct light
     std::vector<float> visibilityScale;  ///< sigma visibility, widened by its estimate's noise
     std::vector<float> albedo;           ///< the luminance of `demodulate`
@@ -43,6 +44,7 @@ Guides guidesOf(const Film& film, const DenoiseOptions& o) {
     g.visibilityScale.assign(n, float(o.sigmaVisibility));
     g.albedo.assign(n, 1.0f);
     g.depthSlope.assign(n, 0.0f);
+    g.depthGradient.assign(2 * n, 0.0f);
     g.hit.assign(n, 0);
     for (size_t i = 0; i < n; ++i) {
         if (!(film.alpha[i] > 0)) continue;
@@ -83,6 +85,14 @@ Guides guidesOf(const Film& film, const DenoiseOptions& o) {
                              std::abs(at(x, y + 1) - at(x, y - 1))) *
                     0.5f;
             g.depthSlope[i] = std::max(slope, 1e-3f * g.depth[i]);
+            // Of the differences to either side, the smaller: across a silhouette one side
+            // jumps, the other continues the surface.
+            auto smoother = [](float ahead, float behind) {
+                return std::abs(ahead) < std::abs(behind) ? ahead : behind;
+            };
+            g.depthGradient[2 * i] = smoother(at(x + 1, y) - g.depth[i], g.depth[i] - at(x - 1, y));
+            g.depthGradient[2 * i + 1] =
+                smoother(at(x, y + 1) - g.depth[i], g.depth[i] - at(x, y - 1));
         }
     return g;
 }
@@ -134,7 +144,7 @@ public:
                 if (qx < 0 || qy < 0 || qx >= g_.width || qy >= g_.height) continue;
                 const size_t q = size_t(qy) * g_.width + qx;
                 if (!g_.hit[q]) continue;
-                double distance = edgeDistance(p, q, std::abs(i) + std::abs(j));
+                double distance = edgeDistance(p, q, i * step_, j * step_);
                 if (i != 0 || j != 0) distance += std::abs(lp - luminance(&light_[3 * q])) / noise;
                 // Past e^-40 a weight is nothing beside the centre's: one exp saved.
                 if (!(distance < 40)) continue;
@@ -148,8 +158,9 @@ public:
     }
 
 private:
-    /// How much pixel q lies on p's surface, lit as p is: their normals' agreement, their
-    /// depths' difference against p's depth slope over the taps' distance, their shares of
+    /// How much pixel q lies on p's surface, lit as p is: their normals' agreement, q's depth
+    /// off p's plane (its depth and depth gradient) against p's depth slope over the taps'
+    /// distance, their shares of
     /// direct light not blocked (a shadow's edge, which no other guide shows), and their
     /// albedos' relative difference: the radiance over the albedo is not only the light where
     /// a finish reflects (a gloss adds the same over dark and pale boards, so the quotient
@@ -157,13 +168,17 @@ private:
     /// The weights multiply, so their logarithms add: returned is minus the log of
     /// cos^exponent x exp(-depth term) x exp(-visibility term) x exp(-albedo term), one exp
     /// for the lot (infinite where the normals are 90 degrees or more apart).
-    double edgeDistance(size_t p, size_t q, int taps) const {
+    double edgeDistance(size_t p, size_t q, int dx, int dy) const {
+        const int taps = (std::abs(dx) + std::abs(dy)) / step_;
         const double cosine = g_.normal[3 * p] * g_.normal[3 * q] +
                               g_.normal[3 * p + 1] * g_.normal[3 * q + 1] +
                               g_.normal[3 * p + 2] * g_.normal[3 * q + 2];
         if (!(cosine > 0)) return HUGE_VAL;
         const double normal = cosine < 1 ? -o_.normalExponent * std::log(cosine) : 0.0;
-        const double depth = std::abs(g_.depth[p] - g_.depth[q]) /
+        // q's depth against p's plane: a slanted wall is no edge along its slant.
+        const double predicted =
+            g_.depth[p] + g_.depthGradient[2 * p] * dx + g_.depthGradient[2 * p + 1] * dy;
+        const double depth = std::abs(g_.depth[q] - predicted) /
                              (o_.sigmaDepth * g_.depthSlope[p] * step_ * taps + 1e-9);
         const double visibility =
             std::abs(g_.visibility[p] - g_.visibility[q]) / g_.visibilityScale[p];
