@@ -160,15 +160,16 @@ public:
 private:
     /// How much pixel q lies on p's surface, lit as p is: their normals' agreement, q's depth
     /// off p's plane (its depth and depth gradient) against p's depth slope over the taps'
-    /// distance, their shares of
-    /// direct light not blocked (a shadow's edge, which no other guide shows), and their
-    /// albedos' relative difference: the radiance over the albedo is not only the light where
-    /// a finish reflects (a gloss adds the same over dark and pale boards, so the quotient
-    /// steps at every board, knot and ring), and filtering across would smear those steps.
-    /// The weights multiply, so their logarithms add: returned is minus the log of
-    /// cos^exponent x exp(-depth term) x exp(-visibility term) x exp(-albedo term), one exp
-    /// for the lot (infinite where the normals are 90 degrees or more apart).
+    /// distance, their shares of direct light not blocked (a shadow's edge, which no other
+    /// guide shows), and their albedos' relative difference: the radiance over the albedo is
+    /// not only the light where a finish reflects (a gloss adds the same over dark and pale
+    /// boards, so the quotient steps at every board, knot and ring), and filtering across
+    /// would smear those steps. The weights multiply, so their logarithms add: returned is
+    /// minus the log of cos^exponent x exp(-depth term) x exp(-visibility term) x
+    /// exp(-albedo term), one exp for the lot (infinite where the normals are 90 degrees or
+    /// more apart; 0 for p itself, whose weight keeps the sum above zero even without a normal).
     double edgeDistance(size_t p, size_t q, int dx, int dy) const {
+        if (p == q) return 0;
         const int taps = (std::abs(dx) + std::abs(dy)) / step_;
         const double cosine = g_.normal[3 * p] * g_.normal[3 * q] +
                               g_.normal[3 * p + 1] * g_.normal[3 * q + 1] +

@@ -180,6 +180,16 @@ TEST(Denoise, BackgroundIsKeptAndThreadsDoNotMatter) {
         for (int c = 0; c < 3; ++c) EXPECT_EQ(one.rgb[3 * i + c], original.rgb[3 * i + c]);
 }
 
+TEST(Denoise, APixelWithoutANormalKeepsAFiniteValue) {
+    // A hit whose samples' normals cancelled (a thin sheet seen from both sides): no
+    // neighbour agrees with it, and it must still keep its own value, not 0 / 0.
+    Film film = noisyFilm(32, 32, 0.05, 9, [](int) { return 1.0; });
+    const size_t i = 16 * 32 + 16;
+    for (int c = 0; c < 3; ++c) film.normal[3 * i + c] = 0;
+    denoiseFilm(film);
+    for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isfinite(film.rgb[3 * i + c])) << c;
+}
+
 TEST(Denoise, APartOfAFrameIsRefused) {
     Film band;
     band.resize(16, 32, 16, 16);
