@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
-#include <cstdlib>
 #include <memory>
 
 #include "renderer/colour_management.h"
@@ -31,10 +31,11 @@ double samplesPerPixel(const FloatExr& image, const std::string& path) {
         fmt::print("{} has no nenrin:spp: the visibility AOV's noise is not allowed for\n", path);
         return 0;
     }
-    char* end = nullptr;
-    const double value = std::strtod(spp->second.c_str(), &end);
-    if (end == spp->second.c_str() || *end != '\0' || !(value >= 1 && value <= 1e9))
-        throw InputError(path, "nenrin:spp", "a sample count, found \"" + spp->second + "\"");
+    const std::string& text = spp->second;
+    int value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size() || value < 1)
+        throw InputError(path, "nenrin:spp", "a sample count, found \"" + text + "\"");
     return value;
 }
 

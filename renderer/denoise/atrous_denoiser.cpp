@@ -220,7 +220,7 @@ void denoiseFilm(Film& film, const DenoiseOptions& options) {
     for (size_t i = 0; i < n; ++i) {
         for (int c = 0; c < 3; ++c)
             light[3 * i + c] = film.rgb[3 * i + c] / g.demodulate[3 * i + c];
-        const double a = luminance(&g.demodulate[3 * i]);
+        const double a = g.albedo[i];
         variance[i] = float(film.variance[i] / (a * a));
     }
     for (int k = 0; k < options.passes; ++k) {
@@ -236,7 +236,7 @@ void denoiseFilm(Film& film, const DenoiseOptions& options) {
             for (int c = 0; c < 3; ++c)
                 film.rgb[3 * i + c] = light[3 * i + c] * g.demodulate[3 * i + c];
     for (size_t i = 0; i < n; ++i) {
-        const double a = luminance(&g.demodulate[3 * i]);
+        const double a = g.albedo[i];
         film.variance[i] = float(variance[i] * a * a);
     }
 }
