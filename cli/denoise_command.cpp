@@ -39,26 +39,49 @@ double samplesPerPixel(const FloatExr& image, const std::string& path) {
     return value;
 }
 
-/// A render from before the visibility AOV: the channel added as 1 everywhere (no shadow edge
-/// to guide by), with a note. Whether anything else is missing orderChannels says.
-void addVisibilityIfMissing(FloatExr& image, const std::string& path) {
-    const auto& c = image.channels;
-    if (std::find(c.begin(), c.end(), "visibility") != c.end() ||
-        std::find(c.begin(), c.end(), "variance") == c.end())
-        return;
-    const size_t n = c.size();
+/// Appends channel `name` to every pixel, its value made from the pixel's others.
+template <class ValueOf>
+void appendChannel(FloatExr& image, const std::string& name, ValueOf valueOf) {
+    const size_t n = image.channels.size();
     std::vector<float> pixels;
     pixels.reserve(image.pixels.size() / n * (n + 1));
     for (size_t i = 0; i + n <= image.pixels.size(); i += n) {
         pixels.insert(pixels.end(), image.pixels.begin() + i, image.pixels.begin() + i + n);
-        pixels.push_back(1.0f);
+        pixels.push_back(valueOf(&image.pixels[i]));
     }
     image.pixels = std::move(pixels);
-    image.channels.push_back("visibility");
-    fmt::print(
-        "{} has no visibility AOV (rendered by an older nenrin): shadow edges are not "
-        "guided\n",
-        path);
+    image.channels.push_back(name);
+}
+
+/// A render from before the visibility, occlusion or diffuse AOVs: visibility added as 1
+/// everywhere (no shadow edge to guide by), occlusion as 0 (no corner), diffuse as all of R, G,
+/// B (gloss divided by the albedo as the rest is), each with a note. Whether anything else is
+/// missing orderChannels says.
+void addAovsIfMissing(FloatExr& image, const std::string& path) {
+    const auto& c = image.channels;
+    auto has = [&](const std::string& name) {
+        return std::find(c.begin(), c.end(), name) != c.end();
+    };
+    if (!has("variance") || !has("R") || !has("G") || !has("B")) return;
+    auto note = [&](const char* aov, const char* consequence) {
+        fmt::print("{} has no {} AOV (rendered by an older nenrin): {}\n", path, aov, consequence);
+    };
+    if (!has("visibility")) {
+        appendChannel(image, "visibility", [](const float*) { return 1.0f; });
+        note("visibility", "shadow edges are not guided");
+    }
+    if (!has("occlusion")) {
+        appendChannel(image, "occlusion", [](const float*) { return 0.0f; });
+        note("occlusion", "corners are not guided");
+    }
+    if (!has("diffuse.R")) {
+        for (const char* channel : {"R", "G", "B"}) {
+            const size_t k = size_t(std::find(c.begin(), c.end(), channel) - c.begin());
+            appendChannel(image, std::string("diffuse.") + channel,
+                          [k](const float* pixel) { return pixel[k]; });
+        }
+        note("diffuse", "gloss is filtered with the diffuse light");
+    }
 }
 
 void runDenoise(const DenoiseArguments& a) {
@@ -67,7 +90,7 @@ void runDenoise(const DenoiseArguments& a) {
     FloatExr image = readFloatExr(a.input);
     const bool adaptive =
         std::find(image.channels.begin(), image.channels.end(), "samples") != image.channels.end();
-    addVisibilityIfMissing(image, a.input);
+    addAovsIfMissing(image, a.input);
     orderChannels(image, filmChannelNames(adaptive), a.input);
     if (image.band.begin != 0 || (image.band.end != -1 && image.band.end != image.height))
         throw InputError(a.input, "data window",
@@ -99,8 +122,9 @@ void addDenoiseCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "denoise",
         "Denoise a rendered EXR (nenrin render's channels, a split render merged): the "
-        "edge-avoiding a-trous filter guided by its albedo, normal, depth and variance AOVs; "
-        "the grain, which lives in the albedo, is kept (docs/denoise.md)");
+        "edge-avoiding a-trous filter guided by its albedo, normal, depth, visibility, "
+        "occlusion and variance AOVs, diffuse light and gloss apart; the grain, which lives in "
+        "the albedo, is kept (docs/denoise.md)");
     cmd->add_option("input", a->input, "A nenrin render EXR")->required();
     cmd->add_option("-o,--output", a->output, "The denoised EXR (the same channels)")->required();
     cmd->add_option("--png", a->png, "Also write an 8-bit sRGB preview through OpenColorIO");
@@ -124,9 +148,14 @@ void addDenoiseCommand(CLI::App& app) {
                     "(shadow edges) smoothed")
         ->check(CLI::Range(0.001, 100.0))
         ->default_val(a->options.sigmaVisibility);
+    cmd->add_option("--sigma-occlusion", a->options.sigmaOcclusion,
+                    "Differences in how near the first bounce found geometry (the darkening "
+                    "into corners) smoothed")
+        ->check(CLI::Range(0.001, 100.0))
+        ->default_val(a->options.sigmaOcclusion);
     cmd->add_option("--sigma-albedo", a->options.sigmaAlbedo,
                     "Albedo differences smoothed, relative to the pixel's albedo (boards, knots "
-                    "and rings under a glossy finish)")
+                    "and rings under a glossy finish, in renders without the diffuse AOV)")
         ->check(CLI::Range(0.001, 100.0))
         ->default_val(a->options.sigmaAlbedo);
     cmd->add_option("--threads", a->options.threads, "Worker threads (0 = all cores)")

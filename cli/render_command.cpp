@@ -63,7 +63,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_flag(
         "--denoise", o->denoise,
         "Denoise the image before it is written: the edge-avoiding a-trous filter "
-        "guided by the albedo, normal, depth, visibility and variance AOVs (docs/denoise.md)");
+        "guided by the albedo, normal, depth, visibility, occlusion and variance AOVs, diffuse "
+        "light and gloss apart (docs/denoise.md)");
     addMaxMemoryOption(cmd);
     cmd->add_option("--tile", arguments->tile,
                     "K/N: render only part K of N (a band of whole 16-pixel tile rows) into a "

@@ -5,15 +5,14 @@
 
 namespace nenrin {
 
-namespace {}  // namespace
-
 DirectLight::DirectLight(const Scene& scene)
     : scene_(scene),
       env_(environmentLight(scene)),
       selection_(scene.lights, scene.settings.lightSelection) {}
 
 void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
-                         std::span<Rgb> distantValues, uint32_t path, std::vector<ShadowRay>& out) {
+                         std::span<BsdfValue> distantValues, uint32_t path,
+                         std::vector<ShadowRay>& out) {
     if (!(v.woLocal.z > 0)) return;
     const SurfaceBsdf& bsdf = v.surface->bsdf;
     const AxisFrame& frame = v.surface->frame;
@@ -36,13 +35,14 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
         // Shared only towards distant lights, whose direction is the same for every sample;
         // other lights are sampled per sample, and their pdf goes with their own f.
         const bool shareLight = !distantValues.empty() && light.type == LightType::Distant;
-        Rgb f;
-        if (shareLight && distantValues[li].r >= 0) {
-            f = distantValues[li];
+        BsdfValue value;
+        if (shareLight && distantValues[li].f.r >= 0) {
+            value = distantValues[li];
         } else {
-            f = bsdf.evaluate(v.woLocal, wiLocal);
-            if (shareLight) distantValues[li] = f;
+            value.f = bsdf.evaluate(v.woLocal, wiLocal, value.diffuse);
+            if (shareLight) distantValues[li] = value;
         }
+        const Rgb& f = value.f;
         if (isBlack(f) || isBlack(ls.radiance)) continue;
         Ray shadow{offsetOrigin(v.position, v.ng, ls.direction), ls.direction};
         double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
@@ -50,8 +50,12 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
         const double pdf = ls.pdf * selected;
         double weight =
             ls.delta || !v.continues ? 1 : powerHeuristic(pdf, bsdf.pdf(v.woLocal, wiLocal));
-        Rgb contribution = multiply(f, ls.radiance) * (wiLocal.z * weight / pdf);
-        out.push_back({path, shadow, tMax, multiply(v.throughput, contribution)});
+        const double scale = wiLocal.z * weight / pdf;
+        const Rgb contribution = multiply(v.throughput, multiply(f, ls.radiance) * scale);
+        const Rgb diffuse =
+            v.camera ? multiply(v.throughput, multiply(value.diffuse, ls.radiance) * scale)
+                     : multiply(v.diffuseShare, contribution);
+        out.push_back({path, shadow, tMax, contribution, diffuse, false, v.camera});
     }
 }
 

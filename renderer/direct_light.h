@@ -33,6 +33,7 @@ struct ShadowRay {
     Ray ray;
     double tMax;
     Rgb contribution;  ///< throughput x light sample: added to the path if nothing blocks it
+    Rgb diffuse;       ///< the part of it the first hit's albedo carries (the film's diffuse)
     bool blocked = false;
     bool camera = false;  ///< made at the camera ray's hit (the film's visibility AOV counts it)
 };
@@ -44,7 +45,16 @@ struct LitVertex {
     const SurfaceShading* surface = nullptr;
     Vec3 woLocal;  ///< back along the path, in surface->frame
     Rgb throughput;
+    /// Per channel, the share of the throughput that left the first hit by its diffuse part
+    /// (PathState::diffuseShare); at the camera's hit the BSDF's own split is used instead.
+    Rgb diffuseShare;
+    bool camera = false;     ///< the camera ray's hit
     bool continues = false;  ///< the path may bounce again, so BSDF sampling may find a light
+};
+
+/// The BSDF's value towards a light, and its diffuse part (SurfaceBsdf::evaluate).
+struct BsdfValue {
+    Rgb f, diffuse;
 };
 
 class DirectLight {
@@ -55,8 +65,8 @@ public:
     /// Appends the shadow rays of next-event estimation at `v` (path `path`) to `out`, in light
     /// order; none if wo is below the shading surface. `distantValues`, one per scene light:
     /// the BSDF's values towards the distant ones, shared by samples with the same BSDF and (up
-    /// to a pixel's spread) the same wo; r < 0: not known yet. Empty: nothing shared.
-    void sample(const LitVertex& v, const BounceRandom& random, std::span<Rgb> distantValues,
+    /// to a pixel's spread) the same wo; f.r < 0: not known yet. Empty: nothing shared.
+    void sample(const LitVertex& v, const BounceRandom& random, std::span<BsdfValue> distantValues,
                 uint32_t path, std::vector<ShadowRay>& out);
 
     // Inline: every path that leaves the scene or finds a light asks (MIS).

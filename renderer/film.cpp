@@ -16,6 +16,7 @@ void Film::resize(int w, int h, int first, int count) {
     rgb.assign(3 * n, 0);
     albedo.assign(3 * n, 0);
     normal.assign(3 * n, 0);
+    diffuse.assign(3 * n, 0);
     alpha.assign(n, 0);
     depth.assign(n, 0);
     growthTime.assign(n, 0);
@@ -23,12 +24,14 @@ void Film::resize(int w, int h, int first, int count) {
     lamella.assign(n, -1);
     variance.assign(n, 0);
     visibility.assign(n, 1);
+    occlusion.assign(n, 0);
 }
 
 std::vector<std::string> filmChannelNames(bool adaptive) {
     std::vector<std::string> names = {
-        "R",   "G",   "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X",
-        "N.Y", "N.Z", "Z", "T", "knot",     "lamella",  "variance", "visibility"};
+        "R",        "G",          "B",         "A",         "albedo.R",  "albedo.G", "albedo.B",
+        "N.X",      "N.Y",        "N.Z",       "Z",         "T",         "knot",     "lamella",
+        "variance", "visibility", "occlusion", "diffuse.R", "diffuse.G", "diffuse.B"};
     if (adaptive) names.push_back("samples");
     return names;
 }
@@ -38,7 +41,8 @@ std::string filmChannelDescription(bool adaptive) {
         "R,G,B: scene-linear radiance; A: coverage; albedo; N: world normal; Z: depth along "
         "the view axis (m); T: growth time (years); knot: 0..1; lamella: board id or -1; "
         "variance: of the pixel's mean luminance; visibility: share of the first hit's direct "
-        "light not blocked";
+        "light not blocked; occlusion: how near the first bounce found geometry (0..1); diffuse: "
+        "the part of R,G,B the first hit's albedo carries";
     if (adaptive) text += "; samples: samples the pixel took";
     return text;
 }
@@ -55,12 +59,13 @@ auto filmPlanes(F& film) {
         size_t stride;
     };
     return std::vector<Plane>{
-        {film.rgb.data(), 3},        {film.rgb.data() + 1, 3}, {film.rgb.data() + 2, 3},
-        {film.alpha.data(), 1},      {film.albedo.data(), 3},  {film.albedo.data() + 1, 3},
-        {film.albedo.data() + 2, 3}, {film.normal.data(), 3},  {film.normal.data() + 1, 3},
-        {film.normal.data() + 2, 3}, {film.depth.data(), 1},   {film.growthTime.data(), 1},
-        {film.knot.data(), 1},       {film.lamella.data(), 1}, {film.variance.data(), 1},
-        {film.visibility.data(), 1}, {film.samples.data(), 1}};
+        {film.rgb.data(), 3},         {film.rgb.data() + 1, 3},     {film.rgb.data() + 2, 3},
+        {film.alpha.data(), 1},       {film.albedo.data(), 3},      {film.albedo.data() + 1, 3},
+        {film.albedo.data() + 2, 3},  {film.normal.data(), 3},      {film.normal.data() + 1, 3},
+        {film.normal.data() + 2, 3},  {film.depth.data(), 1},       {film.growthTime.data(), 1},
+        {film.knot.data(), 1},        {film.lamella.data(), 1},     {film.variance.data(), 1},
+        {film.visibility.data(), 1},  {film.occlusion.data(), 1},   {film.diffuse.data(), 3},
+        {film.diffuse.data() + 1, 3}, {film.diffuse.data() + 2, 3}, {film.samples.data(), 1}};
 }
 
 }  // namespace

@@ -13,6 +13,14 @@
 ///   visibility   share of the first hit's direct light that reached it: the luminance of its
 ///                unblocked light samples over all of them (1 where none was taken); shadow
 ///                edges, which the other AOVs do not see, for the denoiser
+///   occlusion    how near the first bounce found geometry: the mean over the camera samples
+///                that bounced of 1 - t / R for a bounce ray that hit at t within R = 0.15 x
+///                the camera ray's length, else 0 (0 with no bounce); the darkening of
+///                indirect light into corners, for the denoiser
+///   diffuse.R/G/B the part of R, G, B that the first hit's albedo carries: light reflected by
+///                the base (and wood's fibre lobe) at the camera ray's hit, whatever path it
+///                took there; the rest is the coat's or metal's reflection, or an emitter seen
+///                directly. The denoiser divides only this part by the albedo
 ///   samples      samples the pixel took (adaptive sampling only)
 /// Each AOV but lamella is the mean over the samples that contribute to it (hits for albedo,
 /// N and Z, wood hits for T and knot); 0 where none did.
@@ -27,8 +35,8 @@ struct Film {
     int width = 0, height = 0;  ///< the whole frame
     /// The rows the film holds: all of them, unless a split job (--tile) renders a band.
     int firstRow = 0, rows = 0;
-    std::vector<float> rgb, albedo, normal;  ///< 3 per pixel, row firstRow first
-    std::vector<float> alpha, depth, growthTime, knot, lamella, variance, visibility;
+    std::vector<float> rgb, albedo, normal, diffuse;  ///< 3 per pixel, row firstRow first
+    std::vector<float> alpha, depth, growthTime, knot, lamella, variance, visibility, occlusion;
     std::vector<float> samples;  ///< per pixel; empty unless sampling was adaptive
 
     /// A frame of w x h holding rows [first, first + count) (count < 0: to the bottom).

@@ -15,6 +15,10 @@ void TileAovs::writeInto(Film& film, int x0, int y0, int tw, int th,
             film.rgb[3 * f] = float(c.r);
             film.rgb[3 * f + 1] = float(c.g);
             film.rgb[3 * f + 2] = float(c.b);
+            const Rgb d = diffuse[p] * inv;
+            film.diffuse[3 * f] = float(d.r);
+            film.diffuse[3 * f + 1] = float(d.g);
+            film.diffuse[3 * f + 2] = float(d.b);
             film.alpha[f] = float(hits[p] * inv);
             // The samples' variance (unbiased) over their count: the variance of the mean.
             const double n = samples[p], y = luminance(c);
@@ -38,6 +42,7 @@ void TileAovs::writeInto(Film& film, int x0, int y0, int tw, int th,
                 film.knot[f] = float(knot[p] / woodHits[p]);
             }
             film.lamella[f] = float(lamella[p]);
+            film.occlusion[f] = bounces[p] > 0 ? float(occlusion[p] / bounces[p]) : 0;
             film.visibility[f] = directAll[p] > 0 ? float(directUnblocked[p] / directAll[p]) : 1;
         }
     }

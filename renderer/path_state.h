@@ -24,7 +24,12 @@ struct PathState {
     double filmX = 0, filmY = 0;
     Rgb throughput{1, 1, 1};
     Rgb radiance;
-    uint32_t pixel = 0;  ///< index within the tile
+    /// The part of `radiance` that the first hit's albedo carries (the film's diffuse AOV),
+    /// and per channel the share of the throughput that left the first hit by the BSDF's
+    /// diffuse part: whatever the path finds later counts towards `diffuse` by that share.
+    Rgb diffuse, diffuseShare;
+    double cameraHitDistance = 0;  ///< how far the camera ray went (the occlusion AOV's scale)
+    uint32_t pixel = 0;            ///< index within the tile
     uint32_t sample = 0;
     int depth = 0;
     double bsdfPdf = 0;  ///< density of the bounce that made the current ray (for MIS)

@@ -36,6 +36,12 @@ constexpr double kRegularisedRoughness = 0.3;
 
 double maxComponent(const Rgb& c) { return std::max(c.r, std::max(c.g, c.b)); }
 
+/// part / whole per channel (0 where whole is 0).
+Rgb share(const Rgb& part, const Rgb& whole) {
+    auto ratio = [](double p, double w) { return w > 0 ? p / w : 0.0; };
+    return {ratio(part.r, whole.r), ratio(part.g, whole.g), ratio(part.b, whole.b)};
+}
+
 /// The shading state shared by the camera samples of one pixel that see one board face: the
 /// wood was evaluated once for them (WoodHits), so the layered BSDF, the bumped normal and the
 /// frame are the same; so is the BSDF's value towards a distant light, up to the pixel's spread
@@ -53,16 +59,16 @@ public:
         wood_ = wood;
         ng_ = ng;
         surface_ = surface;
-        lightValue_.assign(lights, Rgb{-1, -1, -1});
+        lightValue_.assign(lights, BsdfValue{.f = {-1, -1, -1}, .diffuse = {}});
     }
-    /// The BSDF's value towards each light (kept for the distant ones); r < 0: not known yet.
-    std::span<Rgb> lightValues() { return lightValue_; }
+    /// The BSDF's value towards each light (kept for the distant ones); f.r < 0: not known yet.
+    std::span<BsdfValue> lightValues() { return lightValue_; }
 
 private:
     WoodHits::Evaluation wood_;
     Vec3 ng_;
     SurfaceShading surface_;
-    std::vector<Rgb> lightValue_;
+    std::vector<BsdfValue> lightValue_;
 };
 
 /// Renders tiles: one per thread, its buffers serving every tile the thread renders (no
@@ -185,6 +191,7 @@ void TileRenderer::startCameraPaths(uint32_t k0) {
                 PathState& path = paths_[next++];
                 path.throughput = {1, 1, 1};
                 path.radiance = {};
+                path.diffuse = {};
                 path.depth = 0;
                 path.bsdfPdf = 0;
                 path.alive = true;
@@ -284,11 +291,14 @@ void TileRenderer::traceShadows(TileAovs& aovs) {
         PathState& path = paths_[i];
         for (; next < shadows_.size() && shadows_[next].path == i; ++next) {
             const ShadowRay& shadow = shadows_[next];
-            if (!shadow.blocked) path.radiance = path.radiance + shadow.contribution;
+            if (!shadow.blocked) {
+                path.radiance = path.radiance + shadow.contribution;
+                path.diffuse = path.diffuse + shadow.diffuse;
+            }
             if (shadow.camera) aovs.addDirect(path.pixel, shadow.contribution, shadow.blocked);
         }
         if (!finished_[i]) continue;
-        aovs.addRadiance(path.pixel, path.radiance);
+        aovs.addRadiance(path.pixel, path.radiance, path.diffuse);
         sampling_.addSample(path.pixel, path.sample, path.radiance);
     }
 }
@@ -296,6 +306,7 @@ void TileRenderer::traceShadows(TileAovs& aovs) {
 /// One path vertex: the light the ray found by itself, or a surface: its BSDF (the material
 /// step), next-event estimation, and the bounce that continues the path.
 void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
+    if (path.depth == 1) aovs.addFirstBounce(path.pixel, path.hit, path.cameraHitDistance);
     if (!path.hit.hit || path.hit.isLight) {
         addEmission(path, aovs);
         finish(index, path);
@@ -330,6 +341,7 @@ void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
     const Vec3 woLocal = surface.frame.toLocal(wo);
 
     if (camera) {
+        path.cameraHitDistance = path.hit.distance;
         aovs.addSurfaceHit(path.pixel, surface.bsdf.base, surface.ns,
                            path.hit.distance * dot(path.ray.direction, camera_.forward()));
         if (wood) aovs.addWoodHit(path.pixel, wood->T, wood->knot);
@@ -343,12 +355,11 @@ void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
                            .surface = &surface,
                            .woLocal = woLocal,
                            .throughput = path.throughput,
+                           .diffuseShare = path.diffuseShare,
+                           .camera = camera,
                            .continues = path.depth + 1 < scene_.settings.maxDepth};
-    const size_t firstShadow = shadows_.size();
-    directLight_.sample(vertex, random, shareable ? shared_.lightValues() : std::span<Rgb>(), index,
-                        shadows_);
-    if (camera)
-        for (size_t k = firstShadow; k < shadows_.size(); ++k) shadows_[k].camera = true;
+    directLight_.sample(vertex, random, shareable ? shared_.lightValues() : std::span<BsdfValue>(),
+                        index, shadows_);
 
     if (!bounce(path, surface, ng, woLocal, random)) finish(index, path);
 }
@@ -376,7 +387,10 @@ void TileRenderer::addEmission(PathState& path, TileAovs& aovs) const {
                                path.hit.geometricNormal);
     }
     double w = camera ? 1 : powerHeuristic(path.bsdfPdf, lightPdf);
-    path.radiance = path.radiance + multiply(path.throughput, le) * w;
+    const Rgb found = multiply(path.throughput, le) * w;
+    path.radiance = path.radiance + found;
+    // An emitter the camera sees is no surface's diffuse light.
+    if (!camera) path.diffuse = path.diffuse + multiply(path.diffuseShare, found);
 }
 
 /// Continues the path in a direction sampled from the BSDF, with Russian roulette from the
@@ -391,6 +405,7 @@ bool TileRenderer::bounce(PathState& path, const SurfaceShading& surface, const 
     Vec3 wi = more ? surface.frame.toWorld(bs.wi) : Vec3{};
     if (more && dot(wi, ng) <= 0) more = false;
     if (more) {
+        if (path.depth == 0) path.diffuseShare = share(bs.diffuseWeight, bs.weight);
         path.throughput = multiply(path.throughput, bs.weight);
         if (path.depth >= 2) {
             double q = std::min(0.95, maxComponent(path.throughput));

@@ -55,7 +55,8 @@ Rgb SurfaceBsdf::fibreLobe(const Vec3& wo, const Vec3& wi) const {
     return base * k;
 }
 
-Rgb SurfaceBsdf::evaluate(const Vec3& wo, const Vec3& wi) const {
+Rgb SurfaceBsdf::evaluate(const Vec3& wo, const Vec3& wi, Rgb& diffuse) const {
+    diffuse = {};
     if (wo.z <= 0 || wi.z <= 0) return {};
     Vec3 h = normalize(wo + wi);
     if (metal) {
@@ -64,14 +65,18 @@ Rgb SurfaceBsdf::evaluate(const Vec3& wo, const Vec3& wi) const {
         return schlickRgb(dot(wo, h), metalF0) * (d * g / (4 * wo.z * wi.z));
     }
     Rgb under = base * kInvPi + fibreLobe(wo, wi);
-    if (coatWeight <= 0) return under;
+    if (coatWeight <= 0) {
+        diffuse = under;
+        return under;
+    }
     double f0 = ggx::dielectricF0(ior);
     double d = ggx::distribution(h, coatAlpha);
     double g = ggx::smithG1(wo, coatAlpha) * ggx::smithG1(wi, coatAlpha);
     double coat = coatWeight * ggx::schlick(dot(wo, h), f0) * d * g / (4 * wo.z * wi.z);
     double through =
         (1 - coatWeight * ggx::schlick(wi.z, f0)) * (1 - coatWeight * ggx::schlick(wo.z, f0));
-    return under * through + Rgb{coat, coat, coat};
+    diffuse = under * through;
+    return diffuse + Rgb{coat, coat, coat};
 }
 
 double SurfaceBsdf::pdf(const Vec3& wo, const Vec3& wi) const {
@@ -101,7 +106,8 @@ bool SurfaceBsdf::sample(const Vec3& wo, double uLobe, double u1, double u2, Sam
     out.wi = wi;
     out.pdf = pdf(wo, wi);
     if (!(out.pdf > 0)) return false;
-    out.weight = evaluate(wo, wi) * (wi.z / out.pdf);
+    out.weight = evaluate(wo, wi, out.diffuseWeight) * (wi.z / out.pdf);
+    out.diffuseWeight = out.diffuseWeight * (wi.z / out.pdf);
     return true;
 }
 

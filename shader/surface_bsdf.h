@@ -28,13 +28,21 @@ struct SurfaceBsdf {
     double metalAlpha = 0.2;
 
     /// f(wo, wi) without the cosine; zero unless both directions are above the surface.
-    Rgb evaluate(const Vec3& wo, const Vec3& wi) const;
+    Rgb evaluate(const Vec3& wo, const Vec3& wi) const {
+        Rgb diffuse;
+        return evaluate(wo, wi, diffuse);
+    }
+    /// The same, and into `diffuse` the part of it the albedo carries: the base and the fibre
+    /// lobe under the coat (the rest is the coat's or the metal's reflection, the same over
+    /// pale and dark wood). The denoiser divides only this part by the albedo.
+    Rgb evaluate(const Vec3& wo, const Vec3& wi, Rgb& diffuse) const;
     /// Solid-angle density with which sample() picks wi.
     double pdf(const Vec3& wo, const Vec3& wi) const;
 
     struct Sample {
         Vec3 wi;
-        Rgb weight;  ///< f cos(theta_i) / pdf
+        Rgb weight;         ///< f cos(theta_i) / pdf
+        Rgb diffuseWeight;  ///< the same of f's diffuse part (evaluate)
         double pdf = 0;
         double roughness = 1;  ///< GGX alpha of the lobe it came from, 1 for the diffuse base
     };

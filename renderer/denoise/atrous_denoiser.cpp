@@ -13,11 +13,23 @@ namespace {
 
 double luminance(const float* c) { return luminance(Rgb{c[0], c[1], c[2]}); }
 
-/// Visibility differences up to this many of its estimate's standard deviations are its noise
+/// Visibility (and occlusion) differences up to this many of its estimate's standard deviations
+/// are its noise
 /// (showroom-downlights at 32 spp: FLIP 0.0387 -> 0.0374 and RMSE 0.0152 -> 0.0133 with 2
 /// against none; 3 and 5 smooth the showroom a little more and blur table-top-room's
 /// penumbrae).
 constexpr double kVisibilityNoise = 2;
+
+/// A guide's scale `sigma` widened by the noise of its value `share`, a share of `samples`
+/// samples: as noisy as a coin's tosses, share (1 - share) / samples. With many lights (one
+/// picked per sample) the visibility is that noisy, and a noisy guide would stop the filter
+/// everywhere; 0 or 1 (a clean shadow edge) keeps sigma as it is. samples 0: unknown, sigma.
+double withShareNoise(double sigma, double share, double samples) {
+    if (!(samples > 0)) return sigma;
+    const double v = std::clamp(share, 0.0, 1.0);
+    const double noise = kVisibilityNoise * std::sqrt(v * (1 - v) / samples);
+    return std::sqrt(sigma * sigma + noise * noise);
+}
 
 /// What the passes read per pixel: the guides (fixed) and the signal (each pass's output).
 struct Guides {
@@ -29,6 +41,8 @@ struct Guides {
     std::vector<float> visibility;       ///< the first hit's unblocked share of its direct light
     std::vector<float> visibilityScale;  ///< sigma visibility, widened by its estimate's noise
     std::vector<float> albedo;           ///< the luminance of `demodulate`
+    std::vector<float> occlusion;        ///< how close the first bounce found geometry
+    std::vector<float> occlusionScale;   ///< sigma occlusion, widened by its estimate's noise
     std::vector<uint8_t> hit;
 };
 
@@ -46,6 +60,8 @@ Guides guidesOf(const Film& film, const DenoiseOptions& o) {
     g.depthSlope.assign(n, 0.0f);
     g.depthGradient.assign(2 * n, 0.0f);
     g.hit.assign(n, 0);
+    g.occlusion = film.occlusion;
+    g.occlusionScale.assign(n, float(o.sigmaOcclusion));
     for (size_t i = 0; i < n; ++i) {
         if (!(film.alpha[i] > 0)) continue;
         g.hit[i] = 1;
@@ -53,16 +69,12 @@ Guides guidesOf(const Film& film, const DenoiseOptions& o) {
         for (int c = 0; c < 3; ++c)
             g.demodulate[3 * i + c] = std::max(film.albedo[3 * i + c], 0.01f);
         g.albedo[i] = float(luminance(&g.demodulate[3 * i]));
-        // Visibility is a share of n samples: with many lights (one picked per sample) it is
-        // as noisy as a coin's n tosses, v (1 - v) / n, and a noisy guide would stop the filter
-        // everywhere. 0 or 1 (a clean shadow edge) keeps the scale as it is.
+        // Visibility is a share of the samples; occlusion a mean of values in [0, 1], no
+        // noisier than such a share.
         const double samples = film.samples.empty() ? o.samples : film.samples[i];
-        if (samples > 0) {
-            const double v = std::clamp(double(film.visibility[i]), 0.0, 1.0);
-            const double noise = kVisibilityNoise * std::sqrt(v * (1 - v) / samples);
-            g.visibilityScale[i] =
-                float(std::sqrt(o.sigmaVisibility * o.sigmaVisibility + noise * noise));
-        }
+        g.visibilityScale[i] =
+            float(withShareNoise(o.sigmaVisibility, film.visibility[i], samples));
+        g.occlusionScale[i] = float(withShareNoise(o.sigmaOcclusion, film.occlusion[i], samples));
         const float* nrm = &film.normal[3 * i];
         const double len = std::sqrt(double(nrm[0]) * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
         if (len > 0)
@@ -118,9 +130,10 @@ std::vector<float> blurredVariance(const std::vector<float>& variance, int w, in
 class Pass {
 public:
     Pass(const Guides& g, int step, const std::vector<float>& light,
-         const std::vector<float>& variance, const DenoiseOptions& o)
+         const std::vector<float>& variance, const DenoiseOptions& o, bool gloss)
         : g_(g),
           step_(step),
+          glossPass_(gloss),
           light_(light),
           variance_(variance),
           o_(o),
@@ -129,7 +142,10 @@ public:
     /// Pixel (x, y) into the outputs.
     void pixel(int x, int y, std::vector<float>& lightOut, std::vector<float>& varianceOut) const {
         const size_t p = size_t(y) * g_.width + x;
-        if (!g_.hit[p]) {  // the sky: kept
+        // The sky is kept; so is a gloss of exactly 0 (a matte surface's: nothing to filter).
+        const bool none =
+            glossPass_ && light_[3 * p] == 0 && light_[3 * p + 1] == 0 && light_[3 * p + 2] == 0;
+        if (!g_.hit[p] || none) {
             std::copy_n(&light_[3 * p], 3, &lightOut[3 * p]);
             varianceOut[p] = variance_[p];
             return;
@@ -161,13 +177,16 @@ private:
     /// How much pixel q lies on p's surface, lit as p is: their normals' agreement, q's depth
     /// off p's plane (its depth and depth gradient) against p's depth slope over the taps'
     /// distance, their shares of direct light not blocked (a shadow's edge, which no other
-    /// guide shows), and their albedos' relative difference: the radiance over the albedo is
-    /// not only the light where a finish reflects (a gloss adds the same over dark and pale
-    /// boards, so the quotient steps at every board, knot and ring), and filtering across
-    /// would smear those steps. The weights multiply, so their logarithms add: returned is
-    /// minus the log of cos^exponent x exp(-depth term) x exp(-visibility term) x
-    /// exp(-albedo term), one exp for the lot (infinite where the normals are 90 degrees or
-    /// more apart; 0 for p itself, whose weight keeps the sum above zero even without a normal).
+    /// guide shows), their occlusions (how near the first bounce found geometry: the darkening
+    /// of indirect light into a corner or at a leg's foot, which a filter reaching past it
+    /// would brighten), and, for the diffuse part, their albedos' relative difference: its
+    /// light over the albedo is not only the light where the wood's fibre lobe (a sheen along
+    /// the fibres) or, in a render without the diffuse AOV, a coat's gloss adds to it (the same
+    /// gloss over dark and pale boards steps the quotient at every board, knot and ring), and
+    /// filtering across would smear those steps. The weights multiply, so their
+    /// logarithms add: returned is minus the log of cos^exponent x exp(-depth term) x ... ,
+    /// one exp for the lot (infinite where the normals are 90 degrees or more apart; 0 for p
+    /// itself, whose weight keeps the sum above zero even without a normal).
     double edgeDistance(size_t p, size_t q, int dx, int dy) const {
         if (p == q) return 0;
         const int taps = (std::abs(dx) + std::abs(dy)) / step_;
@@ -183,13 +202,16 @@ private:
                              (o_.sigmaDepth * g_.depthSlope[p] * step_ * taps + 1e-9);
         const double visibility =
             std::abs(g_.visibility[p] - g_.visibility[q]) / g_.visibilityScale[p];
+        const double occlusion = std::abs(g_.occlusion[p] - g_.occlusion[q]) / g_.occlusionScale[p];
         const double albedo =
-            std::abs(g_.albedo[p] - g_.albedo[q]) / (o_.sigmaAlbedo * g_.albedo[p]);
-        return normal + depth + visibility + albedo;
+            glossPass_ ? 0.0
+                       : std::abs(g_.albedo[p] - g_.albedo[q]) / (o_.sigmaAlbedo * g_.albedo[p]);
+        return normal + depth + visibility + occlusion + albedo;
     }
 
     const Guides& g_;
     int step_;
+    bool glossPass_;  ///< the gloss: no albedo guide
     const std::vector<float>& light_;
     const std::vector<float>& variance_;
     const DenoiseOptions& o_;
@@ -200,12 +222,32 @@ private:
 
 std::string denoiseDescription(const DenoiseOptions& o) {
     return "edge-avoiding a-trous wavelet, " + std::to_string(o.passes) +
-           " passes, guided by albedo, normal, depth, visibility and variance (sigma luminance " +
+           " passes, diffuse (over the albedo) and gloss apart, guided by albedo, normal, depth, "
+           "visibility, occlusion and variance (sigma luminance " +
            std::to_string(o.sigmaLuminance) + ", normal exponent " +
            std::to_string(o.normalExponent) + ", sigma depth " + std::to_string(o.sigmaDepth) +
-           ", sigma visibility " + std::to_string(o.sigmaVisibility) + ", sigma albedo " +
-           std::to_string(o.sigmaAlbedo) + ")";
+           ", sigma visibility " + std::to_string(o.sigmaVisibility) + ", sigma occlusion " +
+           std::to_string(o.sigmaOcclusion) + ", sigma albedo " + std::to_string(o.sigmaAlbedo) +
+           ")";
 }
+
+namespace {
+
+/// The passes over one component of the radiance and its variance, in place.
+void filter(const Guides& g, std::vector<float>& light, std::vector<float>& variance,
+            const DenoiseOptions& options, bool gloss) {
+    std::vector<float> lightNext(light.size()), varianceNext(variance.size());
+    for (int k = 0; k < options.passes; ++k) {
+        const Pass pass(g, 1 << k, light, variance, options, gloss);
+        parallelTiles(size_t(g.height), options.threads, [&](size_t y) {
+            for (int x = 0; x < g.width; ++x) pass.pixel(x, int(y), lightNext, varianceNext);
+        });
+        light.swap(lightNext);
+        variance.swap(varianceNext);
+    }
+}
+
+}  // namespace
 
 void denoiseFilm(Film& film, const DenoiseOptions& options) {
     if (film.firstRow != 0 || film.rows != film.height)
@@ -214,30 +256,29 @@ void denoiseFilm(Film& film, const DenoiseOptions& options) {
         throw std::invalid_argument("denoise: 0 to 12 passes");
     const Guides g = guidesOf(film, options);
     const size_t n = size_t(film.width) * film.height;
-    // Demodulated: the illumination, and its variance (the luminance's, over the albedo's
-    // luminance squared).
-    std::vector<float> light(3 * n), variance(n), lightNext(3 * n), varianceNext(n);
+    // The diffuse part demodulated: the illumination, and its variance (the luminance's, over
+    // the albedo's luminance squared). The rest (a coat's gloss) as it is.
+    std::vector<float> light(3 * n), variance(n), gloss(3 * n), glossVariance(n);
     for (size_t i = 0; i < n; ++i) {
-        for (int c = 0; c < 3; ++c)
-            light[3 * i + c] = film.rgb[3 * i + c] / g.demodulate[3 * i + c];
+        for (int c = 0; c < 3; ++c) {
+            light[3 * i + c] = film.diffuse[3 * i + c] / g.demodulate[3 * i + c];
+            gloss[3 * i + c] = film.rgb[3 * i + c] - film.diffuse[3 * i + c];
+        }
         const double a = g.albedo[i];
         variance[i] = float(film.variance[i] / (a * a));
+        glossVariance[i] = film.variance[i];
     }
-    for (int k = 0; k < options.passes; ++k) {
-        const Pass pass(g, 1 << k, light, variance, options);
-        parallelTiles(size_t(g.height), options.threads, [&](size_t y) {
-            for (int x = 0; x < g.width; ++x) pass.pixel(x, int(y), lightNext, varianceNext);
-        });
-        light.swap(lightNext);
-        variance.swap(varianceNext);
-    }
+    filter(g, light, variance, options, false);
+    filter(g, gloss, glossVariance, options, true);
     for (size_t i = 0; i < n; ++i)
         if (g.hit[i])
-            for (int c = 0; c < 3; ++c)
-                film.rgb[3 * i + c] = light[3 * i + c] * g.demodulate[3 * i + c];
+            for (int c = 0; c < 3; ++c) {
+                film.diffuse[3 * i + c] = light[3 * i + c] * g.demodulate[3 * i + c];
+                film.rgb[3 * i + c] = film.diffuse[3 * i + c] + gloss[3 * i + c];
+            }
     for (size_t i = 0; i < n; ++i) {
         const double a = g.albedo[i];
-        film.variance[i] = float(variance[i] * a * a);
+        film.variance[i] = float(variance[i] * a * a + glossVariance[i]);
     }
 }
 

@@ -52,8 +52,9 @@ TEST_F(RenderCliTest, WritesExrWithAovsMetadataAndPngPreview) {
     ASSERT_TRUE(img);
     EXPECT_EQ(img->spec.width, 48);
     EXPECT_EQ(img->spec.height, 32);
-    for (const char* c : {"R", "G", "B", "A", "albedo.R", "N.X", "Z", "T", "knot", "lamella",
-                          "variance", "visibility"})
+    for (const char* c :
+         {"R", "G", "B", "A", "albedo.R", "N.X", "Z", "T", "knot", "lamella", "variance",
+          "visibility", "occlusion", "diffuse.R", "diffuse.G", "diffuse.B"})
         EXPECT_GE(channelIndex(img->spec, c), 0) << c;
     EXPECT_EQ(img->spec.get_string_attribute("nenrin:scene"), kRegressionScene.string());
     EXPECT_EQ(img->spec.get_string_attribute("nenrin:spp"), "2");
@@ -146,6 +147,115 @@ TEST_F(RenderCliTest, VisibilityIsTheShareOfTheSunThatReachesTheFirstHit) {
     }
     EXPECT_NEAR(at(32, 13), 0.85, 0.1);  // the shadow's edge along z
     EXPECT_EQ(at(32, 2), 1.f);
+}
+
+// The diffuse AOV against the BSDF's own split: a plate under a sun straight above, seen
+// from straight above through a 1-degree lens (wo = wi = n at every pixel, to 0.01 degrees),
+// nothing else to bounce off. Lambert base/pi under a clear GGX coat (alpha 0.2, F0 0.04):
+// diffuse = base/pi (1 - 0.04)^2 E, the coat adds 0.04 D(n) / 4 E with D(n) = 1 / (pi 0.2^2).
+TEST_F(RenderCliTest, DiffuseIsThePartOfTheLightTheAlbedoCarries) {
+    auto plate = [&](const std::string& material) {
+        const fs::path p = writeScene("plate.json", fmt::format(R"({{
+  "camera": {{"position": [0, 1, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 1}},
+  "render": {{"resolution": [8, 8], "spp": 4}},
+  "lights": [{{"type": "sun", "direction": [0, 1, 0], "irradiance": 3}}],
+  "materials": [{}],
+  "objects": [{{"type": "box", "size": [1, 0.1, 1], "position": [0, -0.05, 0], "material": "m"}}]
+}})",
+                                                                material));
+        const fs::path out = out_ / "plate.exr";
+        const RunResult r = render(p, {"-o", out.string()});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return readImage(out);
+    };
+    auto channel = [](const Image& img, const char* name, int pixel) {
+        return double(
+            img.pixels[size_t(pixel) * img.spec.nchannels + channelIndex(img.spec, name)]);
+    };
+    constexpr double kPi = 3.14159265358979;
+    {  // matte: all of it
+        const auto img = plate(R"({"name": "m", "type": "diffuse", "colour": 0.5})");
+        ASSERT_TRUE(img);
+        for (int i = 0; i < 64; ++i)
+            for (const char* c : {"R", "G", "B"})
+                EXPECT_EQ(channel(*img, c, i),
+                          channel(*img, (std::string("diffuse.") + c).c_str(), i));
+        EXPECT_NEAR(channel(*img, "G", 27), 0.5 / kPi * 3, 1e-4);
+    }
+    {  // a clear coat over it
+        const auto img =
+            plate(R"({"name": "m", "type": "glossy", "colour": 0.5, "roughness": 0.2})");
+        ASSERT_TRUE(img);
+        const double base = channel(*img, "albedo.G", 27);
+        const double diffuse = base / kPi * 0.96 * 0.96 * 3;
+        const double coat = 0.04 / (kPi * 0.2 * 0.2) / 4 * 3;
+        for (int i : {18, 27, 36, 45}) {
+            EXPECT_NEAR(channel(*img, "diffuse.G", i), diffuse, 1e-3 * diffuse) << i;
+            EXPECT_NEAR(channel(*img, "G", i), diffuse + coat, 1e-3 * (diffuse + coat)) << i;
+        }
+    }
+    {  // a metal: none of it
+        const auto img =
+            plate(R"({"name": "m", "type": "metal", "colour": 0.5, "roughness": 0.2})");
+        ASSERT_TRUE(img);
+        for (int i = 0; i < 64; ++i) {
+            EXPECT_GT(channel(*img, "G", i), 1.0) << i;
+            EXPECT_EQ(channel(*img, "diffuse.G", i), 0.0) << i;
+        }
+    }
+}
+
+// The occlusion AOV against its integral: a floor meeting a wall along x = 0, seen from 1 m
+// straight above (fov 20: x from -0.076 to 0.276 m). A diffuse floor's first bounce is
+// cosine-distributed; a ray leaving a point h from the wall with direction d meets it at
+// t = h / -d.x, and counts 1 - t / R within the reach R = 0.15 x the camera ray's length.
+TEST_F(RenderCliTest, OcclusionIsHowNearTheFirstBounceFoundGeometry) {
+    const fs::path p = writeScene("corner.json", R"({
+  "camera": {"position": [0.1, 1, 0], "look_at": [0.1, 0, 0], "up": [0, 0, -1], "fov": 20},
+  "render": {"resolution": [64, 64], "spp": 64, "max_depth": 2},
+  "lights": [{"type": "sun", "direction": [1, 1, 0.3]}],
+  "materials": [{"name": "grey", "type": "diffuse", "colour": 0.5}],
+  "objects": [
+    {"type": "box", "size": [4, 0.1, 4], "position": [0, -0.05, 0], "material": "grey"},
+    {"type": "box", "size": [0.1, 0.4, 4], "position": [-0.05, 0.2, 0], "material": "grey"}
+  ]})");
+    const fs::path out = out_ / "corner.exr";
+    const RunResult r = render(p, {"-o", out.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto img = readImage(out);
+    ASSERT_TRUE(img);
+    const int o = channelIndex(img->spec, "occlusion");
+    ASSERT_GE(o, 0);
+    // The integral over the hemisphere (y up), midpoint rule in cos^2(theta) and phi.
+    auto expected = [](double h, double reach) {
+        constexpr int kRings = 400, kSpokes = 800;
+        constexpr double kPi = 3.14159265358979;
+        double sum = 0;
+        for (int i = 0; i < kRings; ++i) {
+            const double cos2 = (i + 0.5) / kRings;  // cosine-weighted: uniform in cos^2
+            const double sinTheta = std::sqrt(1 - cos2);
+            for (int j = 0; j < kSpokes; ++j) {
+                const double dx = sinTheta * std::cos(2 * kPi * (j + 0.5) / kSpokes);
+                if (dx < 0) sum += std::max(0.0, 1 - h / -dx / reach);
+            }
+        }
+        return sum / (double(kRings) * kSpokes);
+    };
+    const double halfWidth = std::tan(10 * 3.14159265358979 / 180);  // m at 1 m
+    for (int x = 0; x < 64; ++x) {
+        const double h = 0.1 + ((x + 0.5) / 64 * 2 - 1) * halfWidth;  // the column's middle
+        if (h < 0.01) continue;  // the wall's top, and its foot's first pixel
+        const double reach = 0.15 * std::sqrt(1 + (h - 0.1) * (h - 0.1));
+        double mean = 0;
+        for (int y = 16; y < 48; ++y)  // rows' own noise averaged
+            mean += img->pixels[(size_t(y) * 64 + x) * img->spec.nchannels + o] / 32.0;
+        if (h > reach + 0.006) {
+            EXPECT_EQ(mean, 0.0) << x;  // nothing within reach, even from the pixel's far edge
+        } else {
+            // Measured: within 0.003 of the integral from 0.31 at h = 15 mm down to 0.
+            EXPECT_NEAR(mean, expected(h, reach), 0.008) << x << " h " << h;
+        }
+    }
 }
 
 TEST_F(RenderCliTest, BadAdaptiveSamplingSettingsAreRejected) {
