@@ -1,5 +1,7 @@
 #include "renderer/film.h"
 
+#include <stdexcept>
+
 #include "renderer/exr_file.h"
 #include "renderer/parallel_tiles.h"
 #include "util/atomic_output.h"
@@ -68,6 +70,16 @@ auto filmPlanes(F& film) {
         {film.diffuse.data() + 1, 3}, {film.diffuse.data() + 2, 3}, {film.samples.data(), 1}};
 }
 
+/// The planes of `film`, one per channel of filmChannelNames(true): the two lists are stated
+/// apart, and a channel added to one alone would shift every later one.
+template <class F>
+auto checkedPlanes(F& film) {
+    auto planes = filmPlanes(film);
+    if (planes.size() != filmChannelNames(true).size())
+        throw std::logic_error("film: channel names and planes differ in number");
+    return planes;
+}
+
 }  // namespace
 
 Film filmFromExr(const FloatExr& image, const std::string& file) {
@@ -79,7 +91,7 @@ Film filmFromExr(const FloatExr& image, const std::string& file) {
         throw InputError(file, "channels",
                          "not the channels of a nenrin render (docs/render.md#outputs)");
     if (adaptive) film.samples.assign(film.alpha.size(), 0);
-    const auto planes = filmPlanes(film);
+    const auto planes = checkedPlanes(film);
     for (size_t c = 0; c < channels; ++c)
         for (size_t i = 0; i < film.alpha.size(); ++i)
             planes[c].values[i * planes[c].stride] = image.pixels[i * channels + c];
@@ -91,7 +103,7 @@ void writeFilmExr(const Film& film, const std::string& path,
     // Straight from the film's planes: an interleaved copy of a 4K frame's 16 channels would
     // be another half gigabyte.
     const std::vector<std::string> names = filmChannelNames(!film.samples.empty());
-    const auto planes = filmPlanes(film);
+    const auto planes = checkedPlanes(film);
     std::vector<ExrChannel> channels;
     for (size_t c = 0; c < names.size(); ++c)
         channels.push_back({names[c], planes[c].values, planes[c].stride});

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/film.h"
 #include "util/hash.h"
 
 namespace nenrin {
@@ -47,6 +48,35 @@ TEST(ExrFile, ThreadsCompressTheSameBytes) {
     ASSERT_GT(files[0].size(), 1000u);
     EXPECT_EQ(files[1], files[0]);
     EXPECT_EQ(files[2], files[0]);
+}
+
+TEST(FilmExr, EveryChannelComesBackFromItsOwnPlane) {
+    // Each plane of a film filled with values of its own: written and read back, each must
+    // land in the plane it came from, under its name (the channel list and the planes are
+    // stated apart; a channel added to one and not the other shifts or loses the rest).
+    for (const bool adaptive : {false, true}) {
+        Film film;
+        film.resize(7, 5);
+        if (adaptive) film.samples.assign(film.alpha.size(), 0);
+        std::vector<std::vector<float>*> planes = {
+            &film.rgb,     &film.albedo,   &film.normal,     &film.diffuse,
+            &film.alpha,   &film.depth,    &film.growthTime, &film.knot,
+            &film.lamella, &film.variance, &film.visibility, &film.occlusion};
+        if (adaptive) planes.push_back(&film.samples);
+        for (size_t k = 0; k < planes.size(); ++k)
+            for (size_t i = 0; i < planes[k]->size(); ++i) (*planes[k])[i] = float(100 * k + i);
+        const auto path = std::filesystem::temp_directory_path() / "nenrin-film-planes.exr";
+        writeFilmExr(film, path.string(), {});
+        FloatExr image = readFloatExr(path.string());
+        std::filesystem::remove(path);
+        orderChannels(image, filmChannelNames(adaptive), path.string());  // EXR sorts them
+        const Film back = filmFromExr(image, path.string());
+        const std::vector<const std::vector<float>*> backPlanes = {
+            &back.rgb,        &back.albedo,     &back.normal, &back.diffuse, &back.alpha,
+            &back.depth,      &back.growthTime, &back.knot,   &back.lamella, &back.variance,
+            &back.visibility, &back.occlusion,  &back.samples};
+        for (size_t k = 0; k < planes.size(); ++k) EXPECT_EQ(*backPlanes[k], *planes[k]) << k;
+    }
 }
 
 TEST(ExrFile, ChannelsApartInMemoryWriteTheSameFileAsInterleaved) {
