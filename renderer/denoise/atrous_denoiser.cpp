@@ -13,11 +13,10 @@ namespace {
 
 double luminance(const float* c) { return luminance(Rgb{c[0], c[1], c[2]}); }
 
-/// Visibility (and occlusion) differences up to this many of its estimate's standard deviations
-/// are its noise
-/// (showroom-downlights at 32 spp: FLIP 0.0387 -> 0.0374 and RMSE 0.0152 -> 0.0133 with 2
-/// against none; 3 and 5 smooth the showroom a little more and blur table-top-room's
-/// penumbrae).
+/// Visibility (and occlusion) differences up to this many of its estimate's standard
+/// deviations are its noise (showroom-downlights at 32 spp: FLIP 0.0387 -> 0.0374 and RMSE
+/// 0.0152 -> 0.0133 with 2 against none; 3 and 5 smooth the showroom a little more and blur
+/// table-top-room's penumbrae).
 constexpr double kVisibilityNoise = 2;
 
 /// A guide's scale `sigma` widened by the noise of its value `share`, a share of `samples`
@@ -218,21 +217,6 @@ private:
     std::vector<float> noise_;  ///< the variance blurred
 };
 
-}  // namespace
-
-std::string denoiseDescription(const DenoiseOptions& o) {
-    return "edge-avoiding a-trous wavelet, " + std::to_string(o.passes) +
-           " passes, diffuse (over the albedo) and gloss apart, guided by albedo, normal, depth, "
-           "visibility, occlusion and variance (sigma luminance " +
-           std::to_string(o.sigmaLuminance) + ", normal exponent " +
-           std::to_string(o.normalExponent) + ", sigma depth " + std::to_string(o.sigmaDepth) +
-           ", sigma visibility " + std::to_string(o.sigmaVisibility) + ", sigma occlusion " +
-           std::to_string(o.sigmaOcclusion) + ", sigma albedo " + std::to_string(o.sigmaAlbedo) +
-           ")";
-}
-
-namespace {
-
 /// The passes over one component of the radiance and its variance, in place.
 void filter(const Guides& g, std::vector<float>& light, std::vector<float>& variance,
             const DenoiseOptions& options, bool gloss) {
@@ -248,6 +232,17 @@ void filter(const Guides& g, std::vector<float>& light, std::vector<float>& vari
 }
 
 }  // namespace
+
+std::string denoiseDescription(const DenoiseOptions& o) {
+    return "edge-avoiding a-trous wavelet, " + std::to_string(o.passes) +
+           " passes, diffuse (over the albedo) and gloss apart, guided by albedo, normal, depth, "
+           "visibility, occlusion and variance (sigma luminance " +
+           std::to_string(o.sigmaLuminance) + ", normal exponent " +
+           std::to_string(o.normalExponent) + ", sigma depth " + std::to_string(o.sigmaDepth) +
+           ", sigma visibility " + std::to_string(o.sigmaVisibility) + ", sigma occlusion " +
+           std::to_string(o.sigmaOcclusion) + ", sigma albedo " + std::to_string(o.sigmaAlbedo) +
+           ")";
+}
 
 void denoiseFilm(Film& film, const DenoiseOptions& options) {
     if (film.firstRow != 0 || film.rows != film.height)
