@@ -10,6 +10,7 @@
 #include "grain/field_passes.h"
 #include "grain/growth_field.h"
 #include "grain/growth_terms.h"
+#include "grain/reach_lanes.h"
 
 namespace nenrin {
 
@@ -19,24 +20,19 @@ namespace {
 /// vectorised float pass only pays beyond.
 constexpr uint32_t kDirectScan = 12;
 
-/// What the cheap tests of a branch path read of the field.
-struct ReachBounds {
-    std::span<const FieldSegment> segments;
-    double speedBound;  ///< GrowthField::speedBound_
-    double delta;       ///< of the age warp, eq. 8
-    double reach;       ///< of the junction's cut-off
-};
-
 /// The nearest to p of the kept segments [begin, end): a few (the usual case) measured in
 /// double directly, more in one vectorised float pass with near-ties settled in double. Both
 /// give the smallest double distance, ties to the first (smaller id).
 Best nearestKeptSegment(std::span<const FieldSegment> segments, SegmentBatch& kept, uint32_t begin,
-                        uint32_t end, const Vec3& p) {
+                        uint32_t end, const Vec3& p, SegmentProjection& projection) {
     Best best;
     if (end - begin <= kDirectScan) {
         for (uint32_t k = begin; k < end; ++k) {
-            const double d2 = project(segments[kept.id(k)], p).distance2;
-            if (d2 < best.distance2) best = {static_cast<int32_t>(kept.id(k)), d2};
+            const SegmentProjection x = project(segments[kept.id(k)], p);
+            if (x.distance2 < best.distance2) {
+                best = {static_cast<int32_t>(kept.id(k)), x.distance2};
+                projection = x;
+            }
         }
         return best;
     }
@@ -44,38 +40,60 @@ Best nearestKeptSegment(std::span<const FieldSegment> segments, SegmentBatch& ke
     const uint32_t nearest = kept.id(kept.nearest(begin, end, measured, [&](uint32_t k) {
         return project(segments[kept.id(k)], p).distance2;
     }));
-    return {static_cast<int32_t>(nearest), project(segments[nearest], p).distance2};
+    projection = project(segments[nearest], p);
+    return {static_cast<int32_t>(nearest), projection.distance2};
+}
+
+/// The first steps of the branch pass, chain by chain over the whole chunk in vectorised
+/// loops: the cheap tests (reachTests) and, for a chain with a few kept segments that every
+/// quarter of the chunk shares, each point's nearest of them.
+void measureChains(const ReachBounds& bounds, TileChains& chains, std::span<const Vec3> points,
+                   std::span<const GrowthSample> out, BranchBuffers& buffers) {
+    const size_t n = points.size(), chainCount = chains.chains.size();
+    buffers.points.fill(points);
+    for (size_t i = 0; i < n; ++i) buffers.trunkTimes[i] = out[i].trunkTime;
+    if (buffers.reach.size() < chainCount) {
+        buffers.reach.resize(chainCount);
+        buffers.nearest.resize(chainCount);
+    }
+    buffers.nearestMeasured.assign(chainCount, 0);
+    for (size_t c = 0; c < chainCount; ++c) {
+        const TileChain& tc = chains.chains[c];
+        reachTests(tc, bounds, buffers.points, n, buffers.trunkTimes.data(), buffers.reach[c]);
+        auto same = [](const std::array<uint32_t, 4>& a) {
+            return std::all_of(a.begin(), a.end(), [&](uint32_t x) { return x == a[0]; });
+        };
+        const uint32_t count = tc.end[0] - tc.begin[0];
+        if (same(tc.begin) && same(tc.end) && count > 0 && count <= kDirectScan) {
+            nearestOfSegments(bounds.segments, chains.segments.ids(tc.begin[0], tc.end[0]),
+                              buffers.points, n, buffers.nearest[c]);
+            buffers.nearestMeasured[c] = 1;
+        }
+    }
+}
+
+/// Point i's nearest kept segment of a chain that measureChains measured, and its projection.
+Best measuredNearest(const NearestLanes& lanes, const SegmentBatch& kept, const TileChain& tc,
+                     size_t i, SegmentProjection& projection) {
+    const uint32_t k = tc.begin[0] + static_cast<uint32_t>(lanes.which[i]);
+    projection = {lanes.tRaw[i], lanes.t[i], lanes.distance2[i]};
+    return {static_cast<int32_t>(kept.id(k)), lanes.distance2[i]};
 }
 
 /// A chain's path that may come in under reach x T1 sin(alpha) at a point.
 struct BranchCandidate {
     double sinAlpha;
-    Best nearest;  ///< the chain's nearest kept segment
+    Best nearest;                  ///< the chain's nearest kept segment
+    SegmentProjection projection;  ///< P's onto it
 };
 
-/// The cheap tests of a chain at point p (trunk time t1), before its path time: false if its
-/// path cannot come in under reach x T1 sin(alpha) there (weight 0), else the candidate.
-bool mayComeUnderReach(const ReachBounds& r, const TileChain& tc, SegmentBatch& kept,
-                       uint8_t quarter, const Vec3& p, double t1, BranchCandidate& out) {
-    // alpha: angle between QP and the plane F through the branch start Q, perpendicular to
-    // the branch (eq. 5). Behind F the branch does not count.
-    Vec3 v = p - tc.start;
-    double lv = length(v);
-    const double sinAlpha = lv > 0 ? dot(v, tc.direction) / lv : 0;
-    if (sinAlpha <= 0) return false;
-    // Beyond this distance T_c / sin(alpha) is past reach x T1: weight 0.
-    double slack = r.reach * t1 * sinAlpha - tc.birthBound;
-    if (slack <= 0) return false;
-    double radius = tc.gamma * r.speedBound * ageUnwarp(slack, r.delta);
-    double radius2 = radius * radius;
-    // Quick reject: the box around the chain's kept segments is out of reach.
-    Vec3 outside{std::max(std::max(tc.lower.x - p.x, p.x - tc.upper.x), 0.0),
-                 std::max(std::max(tc.lower.y - p.y, p.y - tc.upper.y), 0.0),
-                 std::max(std::max(tc.lower.z - p.z, p.z - tc.upper.z), 0.0)};
-    if (dot(outside, outside) > radius2) return false;
-    const Best best = nearestKeptSegment(r.segments, kept, tc.begin[quarter], tc.end[quarter], p);
+/// The tests of a chain at point p (trunk time t1) after reachTests passed it, given its
+/// nearest kept segment, before its path time: false if its path cannot come in under
+/// reach x T1 sin(alpha) there (weight 0), else the candidate.
+bool mayComeUnderReach(const ReachBounds& r, const Best& best, const SegmentProjection& projection,
+                       double t1, double sinAlpha, double radius2, BranchCandidate& out) {
     if (best.distance2 > radius2) return false;
-    out = {sinAlpha, best};
+    out = {sinAlpha, best, projection};
     // The path through the nearest segment cannot come in under reach x T1: skip it before
     // paying for the full path time.
     const FieldSegment& bs = r.segments[static_cast<uint32_t>(best.segment)];
@@ -120,21 +138,35 @@ const BranchTerm* blendJunction(std::span<const BranchTerm> terms, double p, Gro
 
 void GrowthField::evaluateBranches(std::span<const Vec3> points, const PointQuarters& quarters,
                                    TileChains& chains, std::span<GrowthSample> out,
-                                   std::vector<BranchTerm>& terms) const {
+                                   BranchBuffers& buffers) const {
     if (chains.chains.empty()) return;
     const ReachBounds bounds{segments_, speedBound_, params_.age.delta, params_.junction.reach};
-    for (size_t i = 0; i < points.size(); ++i) {
+    const size_t n = points.size(), chainCount = chains.chains.size();
+    measureChains(bounds, chains, points, out, buffers);
+    SegmentBatch& kept = chains.segments;
+    std::vector<BranchTerm>& terms = buffers.terms;
+    for (size_t i = 0; i < n; ++i) {
         const Vec3& p = points[i];
         GrowthSample& g = out[i];
         const double t1 = g.trunkTime;
         terms.clear();
         const uint8_t quarter = quarters.quarterOf(i);
-        for (const TileChain& tc : chains.chains) {
-            BranchCandidate c;
-            if (!mayComeUnderReach(bounds, tc, chains.segments, quarter, p, t1, c)) continue;
-            const uint32_t segment = static_cast<uint32_t>(c.nearest.segment);
-            const PathTime path = chainPathTime(segment, p);
-            const double weight = junctionReachWeight(path.T / c.sinAlpha, t1, bounds.reach);
+        for (size_t c = 0; c < chainCount; ++c) {
+            const ReachLanes& lanes = buffers.reach[c];
+            if (!lanes.passes(i)) continue;
+            const TileChain& tc = chains.chains[c];
+            SegmentProjection projection{};
+            const Best best = buffers.nearestMeasured[c]
+                                  ? measuredNearest(buffers.nearest[c], kept, tc, i, projection)
+                                  : nearestKeptSegment(segments_, kept, tc.begin[quarter],
+                                                       tc.end[quarter], p, projection);
+            BranchCandidate cand;
+            if (!mayComeUnderReach(bounds, best, projection, t1, lanes.sinAlpha[i],
+                                   lanes.radius2[i], cand))
+                continue;
+            const uint32_t segment = static_cast<uint32_t>(cand.nearest.segment);
+            const PathTime path = chainPathTime(segment, p, cand.projection);
+            const double weight = junctionReachWeight(path.T / cand.sinAlpha, t1, bounds.reach);
             if (weight <= 0) continue;
             // A dead knot: the branch had died before the trunk's bark reached P, so P lies in
             // the dead stub that the trunk encased.
@@ -143,7 +175,7 @@ void GrowthField::evaluateBranches(std::span<const Vec3> points, const PointQuar
             const double deathTime = segments_[segment].deathTime;
             const double dead =
                 std::isfinite(deathTime) ? smoothstep(deathTime - 0.5, deathTime + 0.5, t1) : 0.0;
-            terms.push_back({tc.chain, path.T, c.sinAlpha, path.distance, dead, weight, segment,
+            terms.push_back({tc.chain, path.T, cand.sinAlpha, path.distance, dead, weight, segment,
                              path.axisPoint, path.axisDirection, path.Ta, path.Tb});
         }
         if (terms.empty()) continue;
@@ -162,8 +194,11 @@ void GrowthField::describeKnot(const BranchTerm& t, const Vec3& point, double tr
     // x = Tc / sin(alpha), i.e. Tc = T1 sin(alpha) w^(1/p); past the branch's death that time
     // is a dieback'd one, so undo eq. 10 to get back to the time the growth terms give.
     const FieldSegment& s = segments_[t.segment];
-    // (w^(1/p) is exactly 1 for w = 1, the usual weight: no pow() for it.)
-    const double root = t.weight == 1 ? 1.0 : std::pow(t.weight, 1 / params_.junction.p);
+    // (w^(1/p) is exactly 1 for w = 1, the usual weight, and a square root for the usual p.)
+    const double p = params_.junction.p;
+    const double root = t.weight == 1 ? 1.0
+                        : p == 2      ? std::sqrt(t.weight)
+                                      : std::pow(t.weight, 1 / p);
     double edge = trunkTime * t.sinAlpha * root;
     if (edge > s.deathTime)
         edge = s.deathTime * std::pow(edge / s.deathTime, 1 / (1 + s.diebackExponent));

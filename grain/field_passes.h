@@ -12,12 +12,13 @@
 #include "grain/field_segment.h"
 #include "grain/point_quarters.h"
 #include "grain/segment_batch.h"
+#include "grain/segment_lanes.h"
 #include "util/vec3.h"
 
 namespace nenrin {
 
 /// Points per chunk: the unit of candidate pruning inside a batch (an 8 x 8 tile).
-inline constexpr size_t kChunk = 64;
+inline constexpr size_t kChunk = kLanes;
 
 /// The nearest segment found so far. Candidates are visited in id order and only a strictly
 /// smaller distance replaces it, so ties go to the smaller id, like the indexes.
@@ -58,11 +59,36 @@ struct BranchTerm {
     double Ta, Tb;  ///< the nearest segment's own (unblended) elongation and thickening
 };
 
+/// One tile chain's cheap tests at a chunk's points (grain/reach_lanes.h); its path cannot
+/// count at a point where passes() is false.
+struct ReachLanes {
+    std::array<double, kLanes> sinAlpha;  ///< eq. 5's angle from plane F, as a sine
+    std::array<double, kLanes> slack;     ///< reach x T1 sin(alpha) less the chain's birth bound
+    std::array<double, kLanes> radius2;   ///< no segment farther than sqrt of this can count
+    std::array<double, kLanes> outside2;  ///< squared distance to the kept segments' box
+    bool passes(size_t i) const {
+        return !(sinAlpha[i] <= 0 || slack[i] <= 0 || outside2[i] > radius2[i]);
+    }
+};
+
+/// The branch pass's buffers, for one chunk.
+struct BranchBuffers {
+    PointLanes points;
+    std::array<double, kLanes> trunkTimes;  ///< the points' T1
+    std::vector<ReachLanes> reach;          ///< per tile chain: reachTests' answers
+    std::vector<NearestLanes> nearest;      ///< per tile chain: its nearest kept segments
+    std::vector<uint8_t> nearestMeasured;   ///< per tile chain: 1 if `nearest` holds them
+    std::vector<BranchTerm> terms;          ///< of the current point
+};
+
 /// The trunk pass's lists.
 struct TrunkBuffers {
     std::vector<uint32_t> candidates;  ///< trunk segments near the batch, sorted
     std::vector<uint32_t> kept;        ///< those kept for the current chunk
     std::vector<double> centreDistances;
+    PointLanes points;     ///< a chunk's points
+    SegmentLanes lanes;    ///< on their plain segment
+    NearestLanes nearest;  ///< or their nearest kept segment
 };
 
 /// The chain culls' lists for one chain.
@@ -79,8 +105,8 @@ struct GrowthBuffers {
     std::vector<uint32_t> groupChains;      ///< those that may matter for a group of chunks
     PointQuarters quarters;                 ///< of the current chunk
     CullBuffers cull;
-    TileChains tileChains;          ///< of the current chunk
-    std::vector<BranchTerm> terms;  ///< of the current point
+    TileChains tileChains;  ///< of the current chunk
+    BranchBuffers branch;
 };
 
 }  // namespace nenrin

@@ -120,6 +120,8 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
         // bounds pass their years through the age warp, hence the 1/delta power.
         speedBound_ *= std::pow(radialGrowth_.maxSpeedRatio(), 1 / params_.age.delta);
     }
+    plainThickening_ = params_.taper.nu == 0 && params_.direction.strength == 0 &&
+                       sway_.radialJitter == 0 && params_.age.delta == 1 && radialGrowth_.empty();
 }
 
 GrowthSample GrowthField::evaluate(const Vec3& p) const {
@@ -164,7 +166,7 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
             prepareTileChains(groupChains, chunk, largestTrunkTime(chunkOut), buffers.quarters,
                               buffers.tileChains, buffers.cull);
             evaluateBranches(chunkPoints, buffers.quarters, buffers.tileChains, chunkOut,
-                             buffers.terms);
+                             buffers.branch);
         }
     }
 }

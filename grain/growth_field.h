@@ -80,6 +80,7 @@ struct TrunkBuffers;
 struct CullBuffers;
 struct TileChains;
 struct BranchTerm;
+struct BranchBuffers;
 class PointQuarters;
 
 class GrowthField {
@@ -117,8 +118,14 @@ public:
     PathTime chainPathTime(uint32_t segment, const Vec3& p) const;
 
 private:
+    /// The same, with P's projection onto the segment (project()) already at hand.
+    PathTime chainPathTime(uint32_t segment, const Vec3& p, const SegmentProjection& proj) const;
     // One path (path_time.cpp).
     PathTime segmentPathTime(uint32_t segment, const Vec3& p, double t) const;
+    /// Its thickening time Tb (eq. 3/3', 7-9, the radial jitter and the ring series) at
+    /// distance `distance` = |d| from the axis point where the elongation time is Ta; with
+    /// plainThickening_, distance x s.inverseSpeed.
+    double thickening(const FieldSegment& s, double Ta, const Vec3& d, double distance) const;
     /// Radius (m) on the ray from the segment's axis through P (`path` = segmentPathTime at P)
     /// at which its path time, before dieback, is `time`: path times scale with distance
     /// along such a ray through the radial growth and the age warp only, both invertible.
@@ -160,7 +167,7 @@ private:
     /// `chains` and the junction blend (eq. 5) with its trunk path, into `out`.
     void evaluateBranches(std::span<const Vec3> points, const PointQuarters& quarters,
                           TileChains& chains, std::span<GrowthSample> out,
-                          std::vector<BranchTerm>& terms) const;
+                          BranchBuffers& buffers) const;
     /// Fills the sample's knot geometry from the branch path with the largest share.
     void describeKnot(const BranchTerm& term, const Vec3& point, double trunkTime,
                       GrowthSample& sample) const;
@@ -181,6 +188,9 @@ private:
     RadialGrowth radialGrowth_;  ///< the skeleton's ring widths; empty = constant speed Sb
     LatewoodTiming latewoodTiming_;
     double speedBound_;  ///< largest radial speed of any path over gamma, m/year
+    /// No taper, direction, radial jitter, age warp or ring series: thickening() is the
+    /// distance over the constant speed, and the trunk pass computes it in its vector loop.
+    bool plainThickening_ = false;
 };
 
 }  // namespace nenrin

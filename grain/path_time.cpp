@@ -11,6 +11,22 @@
 
 namespace nenrin {
 
+double GrowthField::thickening(const FieldSegment& s, double Ta, const Vec3& d,
+                               double distance) const {
+    // Eq. 3/3': Tb = Db / S with S = Sb gamma (x taper, x direction).
+    double db = distance;
+    double speedFactor = taperFactor(Ta, params_.taper.nu, params_.taper.omega);
+    // The outward normal only matters to the direction term and the radial jitter.
+    if (params_.direction.strength != 0 || sway_.radialJitter != 0) {
+        Vec3 n = distance > 0 ? d * (1 / distance) : Vec3{};
+        speedFactor *= directionFactor(n, params_.direction.sunRay, params_.direction.strength);
+        if (sway_.radialJitter != 0) db *= swayRadialFactor(n, s.axis, Ta, sway_);
+    }
+    double Tb = ageWarp(thickeningTime(db, s.inverseSpeed, speedFactor), params_.age.delta);
+    if (!radialGrowth_.empty()) Tb = radialGrowth_.arrivalTime(Ta, Tb) - Ta;
+    return Tb;
+}
+
 GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec3& p,
                                                    double t) const {
     const FieldSegment& s = segments_[segmentId];
@@ -20,25 +36,19 @@ GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec
     r.Ta = elongationTime(s.birthA, s.birthDelta, t);  // eq. 2
     Vec3 d = p - r.axisPoint;
     r.distance = length(d);
-    // Eq. 3/3': Tb = Db / S with S = Sb gamma (x taper, x direction).
-    double db = r.distance;
-    double speedFactor = taperFactor(r.Ta, params_.taper.nu, params_.taper.omega);
-    // The outward normal only matters to the direction term and the radial jitter.
-    if (params_.direction.strength != 0 || sway_.radialJitter != 0) {
-        Vec3 n = r.distance > 0 ? d * (1 / r.distance) : Vec3{};
-        speedFactor *= directionFactor(n, params_.direction.sunRay, params_.direction.strength);
-        if (sway_.radialJitter != 0) db *= swayRadialFactor(n, s.axis, r.Ta, sway_);
-    }
-    r.Tb = ageWarp(thickeningTime(db, s.inverseSpeed, speedFactor), params_.age.delta);
-    if (!radialGrowth_.empty()) r.Tb = radialGrowth_.arrivalTime(r.Ta, r.Tb) - r.Ta;
+    r.Tb = plainThickening_ ? r.distance * s.inverseSpeed : thickening(s, r.Ta, d, r.distance);
     r.T = r.Ta + r.Tb;
     if (s.branch) r.T = dieback(r.T, s.deathTime, s.diebackExponent);
     return r;
 }
 
 GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3& p) const {
+    return chainPathTime(segmentId, p, project(segments_[segmentId], p));
+}
+
+GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3& p,
+                                                 const SegmentProjection& proj) const {
     const FieldSegment& s = segments_[segmentId];
-    SegmentProjection proj = project(s, p);
     bool inSlab = proj.tRaw >= 0 && proj.tRaw <= 1;
     // Regions A/B (inside one segment's slab) and C (beyond the joint on the convex side: the
     // clamped nearest point is the joint Q) need no blend.

@@ -2,16 +2,12 @@
 
 #include <cmath>
 
+#include "util/simd_clones.h"
+
 namespace nenrin {
 
-// Vectorised twice: AVX2 where the processor has it (8 floats per step), SSE2 otherwise;
-// the loops are elementwise (the minimum is kept per lane), so both give the same bits.
-// clang 14 (the sanitizer build) does not emit clones of member functions: one version there.
-#if defined(__clang__)
-#define NENRIN_AVX2_CLONES
-#else
-#define NENRIN_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
-#endif
+// Vectorised twice (util/simd_clones.h); the loops are elementwise (the minimum is kept per
+// lane), so both versions give the same bits.
 NENRIN_AVX2_CLONES SegmentBatch::Measured SegmentBatch::measureFrom(const Vec3& p, uint32_t begin,
                                                                     uint32_t end) {
     const float px = static_cast<float>(p.x - origin_.x);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "util/vec3.h"
@@ -32,6 +33,9 @@ public:
     }
     uint32_t size() const { return static_cast<uint32_t>(ids_.size()); }
     uint32_t id(uint32_t i) const { return ids_[i]; }
+    std::span<const uint32_t> ids(uint32_t begin, uint32_t end) const {
+        return std::span(ids_).subspan(begin, end - begin);
+    }
 
     /// What one vectorised pass over a range found.
     struct Measured {

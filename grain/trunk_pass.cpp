@@ -8,6 +8,7 @@
 #include "grain/field_bounds.h"
 #include "grain/field_passes.h"
 #include "grain/growth_field.h"
+#include "grain/segment_lanes.h"
 
 namespace nenrin {
 
@@ -79,15 +80,22 @@ int32_t plainSegment(std::span<const FieldSegment> segments, std::span<const uin
     return kNone;
 }
 
-/// The nearest of the segments `ids` (sorted) to p.
-uint32_t nearestSegment(std::span<const FieldSegment> segments, std::span<const uint32_t> ids,
-                        const Vec3& p) {
-    Best best;
-    for (uint32_t id : ids) {
-        double d2 = project(segments[id], p).distance2;
-        if (d2 < best.distance2) best = {static_cast<int32_t>(id), d2};
-    }
-    return static_cast<uint32_t>(best.segment);
+/// The segment of `kept` that is every one of the first n points' nearest, or kNone.
+int32_t commonNearest(const NearestLanes& nearest, size_t n, std::span<const uint32_t> kept) {
+    for (size_t k = 1; k < n; ++k)
+        if (nearest.which[k] != nearest.which[0]) return kNone;
+    return n > 0 ? static_cast<int32_t>(kept[static_cast<size_t>(nearest.which[0])]) : kNone;
+}
+
+/// A sample with its trunk path and nothing else.
+GrowthSample trunkSample(const GrowthField::PathTime& trunk) {
+    GrowthSample g;
+    g.T = g.trunkTime = trunk.T;
+    g.Ta = trunk.Ta;
+    g.Tb = trunk.Tb;
+    g.axisPoint = trunk.axisPoint;
+    g.axisDirection = trunk.axisDirection;
+    return g;
 }
 
 }  // namespace
@@ -110,24 +118,40 @@ double GrowthField::evaluateTrunk(std::span<const Vec3> points, const PointBox& 
         const PointBox chunk = boxOf(points.subspan(c0, c1 - c0));
         const std::span<const uint32_t> kept = keepTrunkCandidates(
             segments_, candidates, chunk, buffers.centreDistances, buffers.kept);
-        const int32_t plain = plainSegment(segments_, kept, chunk);
-        for (size_t i = c0; i < c1; ++i) {
-            const Vec3& p = points[i];
-            PathTime trunk;
-            if (plain != kNone) {
-                uint32_t id = static_cast<uint32_t>(plain);
-                trunk = segmentPathTime(id, p, project(segments_[id], p).tRaw);
-            } else {
-                trunk = chainPathTime(nearestSegment(segments_, kept, p), p);
+        const std::span<const Vec3> chunkPoints = points.subspan(c0, c1 - c0);
+        NearestLanes& nearest = buffers.nearest;
+        int32_t plain = plainSegment(segments_, kept, chunk);
+        if (plain == kNone) {
+            // Each point's nearest kept segment, found for all of them at once. Far from the
+            // axis the distance bound keeps segments beyond the neighbours; if every point's
+            // nearest is the same one and the chunk lies in its slab alone, the chunk is plain.
+            buffers.points.fill(chunkPoints);
+            nearestOfSegments(segments_, kept, buffers.points, chunkPoints.size(), nearest);
+            const int32_t common = commonNearest(nearest, chunkPoints.size(), kept);
+            if (common != kNone && insideSlabOnly(segments_, static_cast<uint32_t>(common), chunk))
+                plain = common;
+        }
+        if (plain != kNone) {
+            // One segment's path for every point: its geometry in one vectorised loop.
+            const FieldSegment& s = segments_[static_cast<uint32_t>(plain)];
+            SegmentLanes& lanes = buffers.lanes;
+            measureInsideSegment(s, chunkPoints, lanes);
+            for (size_t i = c0, k = 0; i < c1; ++i, ++k) {
+                const Vec3 axisPoint{lanes.ax[k], lanes.ay[k], lanes.az[k]};
+                const double Ta = lanes.Ta[k], distance = lanes.distance[k];
+                const double Tb = plainThickening_
+                                      ? distance * s.inverseSpeed
+                                      : thickening(s, Ta, points[i] - axisPoint, distance);
+                out[i] = trunkSample({Ta + Tb, Ta, Tb, axisPoint, s.axis, distance});
+                maxTrunkTime = std::max(maxTrunkTime, out[i].T);
             }
-            GrowthSample& g = out[i];
-            g = GrowthSample{};
-            g.T = g.trunkTime = trunk.T;
-            g.Ta = trunk.Ta;
-            g.Tb = trunk.Tb;
-            g.axisPoint = trunk.axisPoint;
-            g.axisDirection = trunk.axisDirection;
-            maxTrunkTime = std::max(maxTrunkTime, trunk.T);
+            continue;
+        }
+        for (size_t i = c0, k = 0; i < c1; ++i, ++k) {
+            const uint32_t id = kept[static_cast<size_t>(nearest.which[k])];
+            out[i] = trunkSample(chainPathTime(
+                id, points[i], {nearest.tRaw[k], nearest.t[k], nearest.distance2[k]}));
+            maxTrunkTime = std::max(maxTrunkTime, out[i].T);
         }
     }
     return maxTrunkTime;
