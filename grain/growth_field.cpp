@@ -45,7 +45,10 @@ std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, co
     const size_t n = input.size();
     swayed.resize(n);
     RingWander ringWander(wander);
-    if (stencil <= 1 || n % stencil != 0) {
+    if (sway.amplitude == 0 && wander.amplitude == 0) {
+        // Neither moves a point: only their zero sums are added, as below (-0 + 0 is +0).
+        for (size_t i = 0; i < n; ++i) swayed[i] = inDomain(input[i]) + Vec3{};
+    } else if (stencil <= 1 || n % stencil != 0) {
         for (size_t i = 0; i < n; ++i) {
             const Vec3 p = inDomain(input[i]);
             swayed[i] = p + swayDisplacement(p, sway) + ringWander(p);

@@ -1,6 +1,7 @@
 #include "grain/segment_lanes.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "util/simd_clones.h"
@@ -31,27 +32,40 @@ NENRIN_AVX2_CLONES void measureInsideSegment(const FieldSegment& s, std::span<co
 
 namespace {
 
-/// One segment's project() at lanes [0, n), and the running nearest: restrict-qualified
-/// parameters, so the loop vectorises.
-__attribute__((always_inline)) inline void nearerOfSegment(
-    const FieldSegment& s, double which, size_t n, const double* __restrict px,
-    const double* __restrict py, const double* __restrict pz, double* __restrict best2,
-    double* __restrict bestTRaw, double* __restrict bestT, double* __restrict bestWhich) {
+/// Four lanes of doubles (GCC's vector extension: one AVX2 register, or two SSE2 ones). The
+/// running minimum below is written with them because GCC turns its plain-loop form into
+/// conditional stores, which it then cannot vectorise.
+using Four = double __attribute__((vector_size(32)));
+/// (By reference: a vector passed by value has another calling convention without AVX.)
+inline const Four& load(const double* p, Four& v) {
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline void store(double* p, const Four& v) { std::memcpy(p, &v, sizeof v); }
+
+/// One segment's project() at lanes [0, n rounded up to 4) (PointLanes pads them), and the
+/// running nearest, lane by lane as the scalar code computes it.
+inline void nearerOfSegment(const FieldSegment& s, double which, size_t n, const PointLanes& p,
+                            NearestLanes& out) {
     const double ax = s.a.x, ay = s.a.y, az = s.a.z;
     const double bx = s.ab.x, by = s.ab.y, bz = s.ab.z, inv = s.invLength2;
-    for (size_t i = 0; i < n; ++i) {
-        const double tRaw = ((px[i] - ax) * bx + (py[i] - ay) * by + (pz[i] - az) * bz) * inv;
-        // std::min(std::max(tRaw, 0.0), 1.0) as project() takes it, as selects.
-        const double lower = tRaw < 0.0 ? 0.0 : tRaw;
-        const double t = 1.0 < lower ? 1.0 : lower;
-        const double dx = px[i] - (ax + bx * t), dy = py[i] - (ay + by * t),
-                     dz = pz[i] - (az + bz * t);
-        const double d2 = dx * dx + dy * dy + dz * dz;
-        const bool nearer = d2 < best2[i];
-        best2[i] = nearer ? d2 : best2[i];
-        bestTRaw[i] = nearer ? tRaw : bestTRaw[i];
-        bestT[i] = nearer ? t : bestT[i];
-        bestWhich[i] = nearer ? which : bestWhich[i];
+    const Four zero = {0, 0, 0, 0}, one = {1, 1, 1, 1}, index = zero + which;
+    for (size_t i = 0; i < n; i += 4) {
+        Four x, y, z, best, oldTRaw, oldT, oldWhich;
+        load(&p.x[i], x);
+        load(&p.y[i], y);
+        load(&p.z[i], z);
+        const Four tRaw = ((x - ax) * bx + (y - ay) * by + (z - az) * bz) * inv;
+        // std::min(std::max(tRaw, 0.0), 1.0) as project() takes it.
+        const Four lower = tRaw < zero ? zero : tRaw;
+        const Four t = one < lower ? one : lower;
+        const Four dx = x - (ax + bx * t), dy = y - (ay + by * t), dz = z - (az + bz * t);
+        const Four d2 = dx * dx + dy * dy + dz * dz;
+        const auto nearer = d2 < load(&out.distance2[i], best);
+        store(&out.distance2[i], nearer ? d2 : best);
+        store(&out.tRaw[i], nearer ? tRaw : load(&out.tRaw[i], oldTRaw));
+        store(&out.t[i], nearer ? t : load(&out.t[i], oldT));
+        store(&out.which[i], nearer ? index : load(&out.which[i], oldWhich));
     }
 }
 
@@ -60,14 +74,13 @@ __attribute__((always_inline)) inline void nearerOfSegment(
 NENRIN_AVX2_CLONES void nearestOfSegments(std::span<const FieldSegment> segments,
                                           std::span<const uint32_t> ids, const PointLanes& points,
                                           size_t n, NearestLanes& out) {
-    for (size_t i = 0; i < n; ++i) {
+    const size_t lanes = (n + 3) / 4 * 4;
+    for (size_t i = 0; i < lanes; ++i) {
         out.distance2[i] = std::numeric_limits<double>::infinity();
         out.tRaw[i] = out.t[i] = out.which[i] = 0;
     }
     for (size_t k = 0; k < ids.size(); ++k)
-        nearerOfSegment(segments[ids[k]], double(k), n, points.x.data(), points.y.data(),
-                        points.z.data(), out.distance2.data(), out.tRaw.data(), out.t.data(),
-                        out.which.data());
+        nearerOfSegment(segments[ids[k]], double(k), lanes, points, out);
 }
 
 }  // namespace nenrin

@@ -12,18 +12,21 @@
 
 namespace nenrin {
 
-/// Points per run at most: a chunk (field_passes.h's kChunk).
+/// Points per run at most: a chunk (field_passes.h's kChunk); a multiple of 4.
 inline constexpr size_t kLanes = 64;
 
-/// A chunk's points, coordinate by coordinate.
+/// A chunk's points, coordinate by coordinate, padded with zeros to a multiple of 4 (loops
+/// of four lanes at a time read them; what they compute there is not used).
 struct PointLanes {
     std::array<double, kLanes> x, y, z;
     void fill(std::span<const Vec3> points) {
-        for (size_t i = 0; i < points.size(); ++i) {
+        const size_t n = points.size();
+        for (size_t i = 0; i < n; ++i) {
             x[i] = points[i].x;
             y[i] = points[i].y;
             z[i] = points[i].z;
         }
+        for (size_t i = n; i < (n + 3) / 4 * 4; ++i) x[i] = y[i] = z[i] = 0;
     }
 };
 
