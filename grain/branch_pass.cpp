@@ -44,40 +44,93 @@ Best nearestKeptSegment(std::span<const FieldSegment> segments, SegmentBatch& ke
     return {static_cast<int32_t>(nearest), projection.distance2};
 }
 
+/// A quarter's kept segments are measured in lanes from this many; one or two its points
+/// measure themselves (on the 10k-segment tree both ways cost the same to 0.1 %).
+constexpr uint32_t kQuarterLanesFrom = 3;
+
+/// How measureChains found a chain's nearest kept segments at the chunk's points.
+enum MeasuredBy : uint8_t {
+    kNotMeasured,  ///< each point measures them itself (nearestKeptSegment)
+    kWholeChunk,   ///< one list for the whole chunk: lanes indexed by point
+    kByQuarter,    ///< a list per quarter: lanes indexed by the point's place in its quarter
+};
+
+/// Fills BranchBuffers' quarter groups from the chunk's split.
+void groupByQuarter(const PointQuarters& quarters, std::span<const Vec3> points,
+                    BranchBuffers& buffers) {
+    buffers.quarterCount.fill(0);
+    for (size_t i = 0; i < points.size(); ++i) {
+        const uint8_t q = quarters.quarterOf(i);
+        const size_t place = buffers.quarterCount[q]++;
+        buffers.placeInQuarter[i] = static_cast<uint8_t>(place);
+        PointLanes& lanes = buffers.quarterPoints[q];
+        lanes.x[place] = points[i].x;
+        lanes.y[place] = points[i].y;
+        lanes.z[place] = points[i].z;
+    }
+    for (int q = 0; q < 4; ++q) buffers.quarterPoints[q].pad(buffers.quarterCount[q]);
+}
+
 /// The first steps of the branch pass, chain by chain over the whole chunk in vectorised
-/// loops: the cheap tests (reachTests) and, for a chain with a few kept segments that every
-/// quarter of the chunk shares, each point's nearest of them.
-void measureChains(const ReachBounds& bounds, TileChains& chains, std::span<const Vec3> points,
-                   std::span<const GrowthSample> out, BranchBuffers& buffers) {
+/// loops: the cheap tests (reachTests) and, where a chain keeps at most kDirectScan segments
+/// for the whole chunk or for a quarter of it, each point's nearest of them.
+void measureChains(const ReachBounds& bounds, TileChains& chains, const PointQuarters& quarters,
+                   std::span<const Vec3> points, std::span<const GrowthSample> out,
+                   BranchBuffers& buffers) {
     const size_t n = points.size(), chainCount = chains.chains.size();
     buffers.points.fill(points);
     for (size_t i = 0; i < n; ++i) buffers.trunkTimes[i] = out[i].trunkTime;
-    if (buffers.reach.size() < chainCount) {
-        buffers.reach.resize(chainCount);
-        buffers.nearest.resize(chainCount);
-    }
-    buffers.nearestMeasured.assign(chainCount, 0);
+    if (buffers.reach.size() < chainCount) buffers.reach.resize(chainCount);
+    buffers.measuredBy.assign(chainCount, kNotMeasured);
+    buffers.nearestOf.assign(chainCount, {-1, -1, -1, -1});
+    size_t used = 0;
+    bool grouped = false;
+    // Each point's nearest of the segments [begin, end) of the kept ones, into new lanes.
+    auto measure = [&](uint32_t begin, uint32_t end, const PointLanes& at, size_t count) {
+        if (buffers.nearest.size() <= used) buffers.nearest.resize(used + 1);
+        nearestOfSegments(bounds.segments, chains.segments.ids(begin, end), at, count,
+                          buffers.nearest[used]);
+        return static_cast<int32_t>(used++);
+    };
+    auto fewEnough = [](uint32_t begin, uint32_t end) {
+        return end > begin && end - begin <= kDirectScan;
+    };
     for (size_t c = 0; c < chainCount; ++c) {
         const TileChain& tc = chains.chains[c];
         reachTests(tc, bounds, buffers.points, n, buffers.trunkTimes.data(), buffers.reach[c]);
         auto same = [](const std::array<uint32_t, 4>& a) {
             return std::all_of(a.begin(), a.end(), [&](uint32_t x) { return x == a[0]; });
         };
-        const uint32_t count = tc.end[0] - tc.begin[0];
-        if (same(tc.begin) && same(tc.end) && count > 0 && count <= kDirectScan) {
-            nearestOfSegments(bounds.segments, chains.segments.ids(tc.begin[0], tc.end[0]),
-                              buffers.points, n, buffers.nearest[c]);
-            buffers.nearestMeasured[c] = 1;
+        if (same(tc.begin) && same(tc.end)) {
+            if (!fewEnough(tc.begin[0], tc.end[0])) continue;
+            buffers.nearestOf[c].fill(measure(tc.begin[0], tc.end[0], buffers.points, n));
+            buffers.measuredBy[c] = kWholeChunk;
+            continue;
         }
+        // Split by quarter (so the chunk's quarters are known).
+        for (int q = 0; q < 4; ++q) {
+            if (!fewEnough(tc.begin[q], tc.end[q]) || tc.end[q] - tc.begin[q] < kQuarterLanesFrom)
+                continue;
+            if (!grouped) groupByQuarter(quarters, points, buffers), grouped = true;
+            if (buffers.quarterCount[q] == 0) continue;
+            buffers.nearestOf[c][q] =
+                measure(tc.begin[q], tc.end[q], buffers.quarterPoints[q], buffers.quarterCount[q]);
+        }
+        buffers.measuredBy[c] = kByQuarter;
     }
 }
 
-/// Point i's nearest kept segment of a chain that measureChains measured, and its projection.
-Best measuredNearest(const NearestLanes& lanes, const SegmentBatch& kept, const TileChain& tc,
-                     size_t i, SegmentProjection& projection) {
-    const uint32_t k = tc.begin[0] + static_cast<uint32_t>(lanes.which[i]);
-    projection = {lanes.tRaw[i], lanes.t[i], lanes.distance2[i]};
-    return {static_cast<int32_t>(kept.id(k)), lanes.distance2[i]};
+/// Point i's nearest kept segment of chain c if measureChains measured it (its projection
+/// in `projection`), else a Best without a segment.
+Best measuredNearest(const BranchBuffers& buffers, const SegmentBatch& kept, const TileChain& tc,
+                     size_t c, size_t i, uint8_t quarter, SegmentProjection& projection) {
+    const int32_t index = buffers.nearestOf[c][quarter];
+    if (index < 0) return {};
+    const NearestLanes& lanes = buffers.nearest[static_cast<size_t>(index)];
+    const size_t lane = buffers.measuredBy[c] == kWholeChunk ? i : buffers.placeInQuarter[i];
+    const uint32_t k = tc.begin[quarter] + static_cast<uint32_t>(lanes.which[lane]);
+    projection = {lanes.tRaw[lane], lanes.t[lane], lanes.distance2[lane]};
+    return {static_cast<int32_t>(kept.id(k)), lanes.distance2[lane]};
 }
 
 /// A chain's path that may come in under reach x T1 sin(alpha) at a point.
@@ -142,7 +195,7 @@ void GrowthField::evaluateBranches(std::span<const Vec3> points, const PointQuar
     if (chains.chains.empty()) return;
     const ReachBounds bounds{segments_, speedBound_, params_.age.delta, params_.junction.reach};
     const size_t n = points.size(), chainCount = chains.chains.size();
-    measureChains(bounds, chains, points, out, buffers);
+    measureChains(bounds, chains, quarters, points, out, buffers);
     SegmentBatch& kept = chains.segments;
     std::vector<BranchTerm>& terms = buffers.terms;
     for (size_t i = 0; i < n; ++i) {
@@ -156,10 +209,10 @@ void GrowthField::evaluateBranches(std::span<const Vec3> points, const PointQuar
             if (!lanes.passes(i)) continue;
             const TileChain& tc = chains.chains[c];
             SegmentProjection projection{};
-            const Best best = buffers.nearestMeasured[c]
-                                  ? measuredNearest(buffers.nearest[c], kept, tc, i, projection)
-                                  : nearestKeptSegment(segments_, kept, tc.begin[quarter],
-                                                       tc.end[quarter], p, projection);
+            Best best = measuredNearest(buffers, kept, tc, c, i, quarter, projection);
+            if (best.segment == kNone)
+                best = nearestKeptSegment(segments_, kept, tc.begin[quarter], tc.end[quarter], p,
+                                          projection);
             BranchCandidate cand;
             if (!mayComeUnderReach(bounds, best, projection, t1, lanes.sinAlpha[i],
                                    lanes.radius2[i], cand))

@@ -76,9 +76,17 @@ struct BranchBuffers {
     PointLanes points;
     std::array<double, kLanes> trunkTimes;  ///< the points' T1
     std::vector<ReachLanes> reach;          ///< per tile chain: reachTests' answers
-    std::vector<NearestLanes> nearest;      ///< per tile chain: its nearest kept segments
-    std::vector<uint8_t> nearestMeasured;   ///< per tile chain: 1 if `nearest` holds them
-    std::vector<BranchTerm> terms;          ///< of the current point
+    /// The chunk's points grouped by quarter (when a chain's kept segments differ by quarter):
+    /// each quarter's points, compact, and each point's place among its quarter's.
+    std::array<PointLanes, 4> quarterPoints;
+    std::array<size_t, 4> quarterCount;
+    std::array<uint8_t, kLanes> placeInQuarter;
+    /// Per tile chain: how its points' nearest kept segments were measured (MeasuredBy), and
+    /// per quarter the index in `nearest` of the lanes that hold them (-1: not measured).
+    std::vector<uint8_t> measuredBy;
+    std::vector<std::array<int32_t, 4>> nearestOf;
+    std::vector<NearestLanes> nearest;
+    std::vector<BranchTerm> terms;  ///< of the current point
 };
 
 /// The trunk pass's lists.

@@ -26,6 +26,10 @@ struct PointLanes {
             y[i] = points[i].y;
             z[i] = points[i].z;
         }
+        pad(n);
+    }
+    /// Zeros from lane n to the next multiple of 4.
+    void pad(size_t n) {
         for (size_t i = n; i < (n + 3) / 4 * 4; ++i) x[i] = y[i] = z[i] = 0;
     }
 };
