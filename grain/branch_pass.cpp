@@ -48,13 +48,6 @@ Best nearestKeptSegment(std::span<const FieldSegment> segments, SegmentBatch& ke
 /// measure themselves (on the 10k-segment tree both ways cost the same to 0.1 %).
 constexpr uint32_t kQuarterLanesFrom = 3;
 
-/// How measureChains found a chain's nearest kept segments at the chunk's points.
-enum MeasuredBy : uint8_t {
-    kNotMeasured,  ///< each point measures them itself (nearestKeptSegment)
-    kWholeChunk,   ///< one list for the whole chunk: lanes indexed by point
-    kByQuarter,    ///< a list per quarter: lanes indexed by the point's place in its quarter
-};
-
 /// Fills BranchBuffers' quarter groups from the chunk's split.
 void groupByQuarter(const PointQuarters& quarters, std::span<const Vec3> points,
                     BranchBuffers& buffers) {
@@ -81,7 +74,7 @@ void measureChains(const ReachBounds& bounds, TileChains& chains, const PointQua
     buffers.points.fill(points);
     for (size_t i = 0; i < n; ++i) buffers.trunkTimes[i] = out[i].trunkTime;
     if (buffers.reach.size() < chainCount) buffers.reach.resize(chainCount);
-    buffers.measuredBy.assign(chainCount, kNotMeasured);
+    buffers.byQuarter.assign(chainCount, 0);
     buffers.nearestOf.assign(chainCount, {-1, -1, -1, -1});
     size_t used = 0;
     bool grouped = false;
@@ -104,7 +97,6 @@ void measureChains(const ReachBounds& bounds, TileChains& chains, const PointQua
         if (same(tc.begin) && same(tc.end)) {
             if (!fewEnough(tc.begin[0], tc.end[0])) continue;
             buffers.nearestOf[c].fill(measure(tc.begin[0], tc.end[0], buffers.points, n));
-            buffers.measuredBy[c] = kWholeChunk;
             continue;
         }
         // Split by quarter (so the chunk's quarters are known).
@@ -116,7 +108,7 @@ void measureChains(const ReachBounds& bounds, TileChains& chains, const PointQua
             buffers.nearestOf[c][q] =
                 measure(tc.begin[q], tc.end[q], buffers.quarterPoints[q], buffers.quarterCount[q]);
         }
-        buffers.measuredBy[c] = kByQuarter;
+        buffers.byQuarter[c] = 1;
     }
 }
 
@@ -127,7 +119,7 @@ Best measuredNearest(const BranchBuffers& buffers, const SegmentBatch& kept, con
     const int32_t index = buffers.nearestOf[c][quarter];
     if (index < 0) return {};
     const NearestLanes& lanes = buffers.nearest[static_cast<size_t>(index)];
-    const size_t lane = buffers.measuredBy[c] == kWholeChunk ? i : buffers.placeInQuarter[i];
+    const size_t lane = buffers.byQuarter[c] ? buffers.placeInQuarter[i] : i;
     const uint32_t k = tc.begin[quarter] + static_cast<uint32_t>(lanes.which[lane]);
     projection = {lanes.tRaw[lane], lanes.t[lane], lanes.distance2[lane]};
     return {static_cast<int32_t>(kept.id(k)), lanes.distance2[lane]};

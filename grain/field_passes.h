@@ -81,10 +81,12 @@ struct BranchBuffers {
     std::array<PointLanes, 4> quarterPoints;
     std::array<size_t, 4> quarterCount;
     std::array<uint8_t, kLanes> placeInQuarter;
-    /// Per tile chain: how its points' nearest kept segments were measured (MeasuredBy), and
-    /// per quarter the index in `nearest` of the lanes that hold them (-1: not measured).
-    std::vector<uint8_t> measuredBy;
+    /// Per tile chain and quarter: the index in `nearest` of the lanes holding its points'
+    /// nearest kept segments (-1: not measured, each point measures them itself).
     std::vector<std::array<int32_t, 4>> nearestOf;
+    /// Per tile chain: 1 if those lanes are indexed by the point's place in its quarter, 0 if
+    /// by the point.
+    std::vector<uint8_t> byQuarter;
     std::vector<NearestLanes> nearest;
     std::vector<BranchTerm> terms;  ///< of the current point
 };
