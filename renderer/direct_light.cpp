@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace nenrin {
 
@@ -29,7 +30,10 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
         const double selected = k < everyVertex.size() ? 1 : pickedProbability;
         const Light& light = scene_.lights[li];
         LightSample ls;
-        const auto [u1, u2] = random.pair(dimension::lightPair(k));
+        // Delta lights take no sample: their numbers are not drawn (a hash each, per sample).
+        const bool delta = light.type == LightType::Distant || light.type == LightType::Point;
+        const auto [u1, u2] =
+            delta ? std::pair<double, double>{0, 0} : random.pair(dimension::lightPair(k));
         if (!sampleLight(light, v.position, u1, u2, ls) || dot(ls.direction, v.ng) <= 0) continue;
         Vec3 wiLocal = frame.toLocal(ls.direction);
         // Shared only towards distant lights, whose direction is the same for every sample;
