@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "fit/knot_colour.h"
+#include "fit/knot_rings.h"
 #include "grain/grain_params.h"
 #include "grain/grown_tree.h"
 #include "renderer/bake/bake_specs.h"
@@ -342,6 +343,23 @@ void sizeKnots(WoodFit& fit, const std::vector<FacePhoto>& photos, const FitOpti
     }
 }
 
+/// The knots' wood coloured as photographed (two rounds: the knot share's smoothstep blends
+/// the knot colour in, so one ratio undershoots), then their rings' contrast (the late wood
+/// darkened) and their mean colour again.
+void colourKnots(WoodFit& fit, const std::vector<FacePhoto>& photos, const FitOptions& options) {
+    auto rebake = [&] { return calibrateColours(fit.grain, fit.skeleton, photos, options, 0); };
+    auto matchColour = [&] {
+        for (int round = 0; round < kKnotColourRounds; ++round) {
+            if (!matchKnotColour(fit.grain, fit.faces)) break;
+            fit.faces = rebake();
+        }
+    };
+    matchColour();
+    matchKnotRings(fit.grain, fit.faces, photos, rebake);
+    matchColour();
+    fit.knotRings = knotRingContrast(photos, fit.faces);
+}
+
 }  // namespace
 
 WoodFit fitSample(const Sample& sample, const FitOptions& options) {
@@ -424,12 +442,7 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
     } else if (bases.size() > 1) {
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
     }
-    // The knots' wood coloured as photographed (two rounds: the knot share's smoothstep
-    // blends the knot colour in, so one ratio undershoots).
-    for (int round = 0; round < kKnotColourRounds && !fit.branches.empty(); ++round) {
-        if (!matchKnotColour(fit.grain, fit.faces)) break;
-        fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 0);
-    }
+    if (!fit.branches.empty()) colourKnots(fit, photos, options);
     fit.knots = knotFigures(photos, centres, fit.faces, fit.pith);
     if (options.baseGrains.empty())
         fit.warnings.push_back(
@@ -467,7 +480,11 @@ nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
                         {"photo", knotJson(k.photo)},
                         {"baked", k.baked ? knotJson(*k.baked) : nlohmann::json(nullptr)},
                         {"offset_mm", rounded(k.offsetMm, 0.01)}});
-    const nlohmann::json knotsJson = {{"branches", branches}, {"faces", seen}};
+    nlohmann::json knotsJson = {{"branches", branches}, {"faces", seen}};
+    if (fit.knotRings.pixels > 0)
+        knotsJson["ring_contrast"] = {{"photo", rounded(fit.knotRings.photo, 0.01)},
+                                      {"baked", rounded(fit.knotRings.baked, 0.01)},
+                                      {"pixels", fit.knotRings.pixels}};
     const PithLine& p = fit.pith;
     nlohmann::json widths = nlohmann::json::array();
     const std::vector<double>& b = fit.profile.boundaries;

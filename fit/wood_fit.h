@@ -55,6 +55,13 @@ struct KnotFigures {
     double offsetMm = -1;           ///< photo to bake, mm (-1: the bake shows none)
 };
 
+/// The ring contrast of the knot wood in the photographs and the bakes (fit/knot_rings.h):
+/// RMS of L* band-passed to a knot's ring scale; over `pixels` pixels of knot wood.
+struct KnotRingContrast {
+    double photo = 0, baked = 0;
+    int pixels = 0;
+};
+
 struct WoodFit {
     PithLine pith;
     RingWarp warp;
@@ -65,6 +72,7 @@ struct WoodFit {
     std::string base;  ///< the base grain chosen ("" for none)
     std::vector<FaceFigures> faces;
     std::vector<KnotFigures> knots;  ///< every face whose photograph shows a knot
+    KnotRingContrast knotRings;      ///< of the knot wood, photographs and bakes
     std::vector<std::string> warnings;
     double seconds = 0;
 };

@@ -200,6 +200,7 @@ void readKnotColours(JsonReader& k, ColourParams& cp) {
     cp.knotDarkening = k.inRange("darkening", cp.knotDarkening, 0, 1);
     cp.deadKnotDarkening = k.inRange("dead_darkening", cp.deadKnotDarkening, 0, 1);
     cp.knotCore = k.inRange("core", cp.knotCore, 0, 1);
+    cp.knotRingDarkening = k.inRange("ring_darkening", cp.knotRingDarkening, 0, 0.9);
     cp.deadKnotRim = k.inRange("dead_rim", cp.deadKnotRim, 0, 1);
     cp.deadKnotRimWidth = k.inRange("dead_rim_width", cp.deadKnotRimWidth, 0, 0.05);
     cp.deadKnotChecks = k.inRange("dead_checks", cp.deadKnotChecks, 0, 1);
@@ -296,6 +297,7 @@ nlohmann::json colourJson(const ColourParams& c) {
          {{"darkening", c.knotDarkening},
           {"dead_darkening", c.deadKnotDarkening},
           {"core", c.knotCore},
+          {"ring_darkening", c.knotRingDarkening},
           {"dead_rim", c.deadKnotRim},
           {"dead_rim_width", c.deadKnotRimWidth},
           {"dead_checks", c.deadKnotChecks},

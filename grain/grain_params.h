@@ -72,7 +72,11 @@ struct ColourParams {
     double knotDarkening = 0.25;      ///< relative darkening inside living knots
     double deadKnotDarkening = 0.45;  ///< relative darkening inside dead knots
     double knotCore = 0.25;           ///< extra darkening at a knot's pith, fading to 0 at its edge
-    double deadKnotRim = 0.5;         ///< relative darkening of the bark ring of dead knots
+    /// Knot wood is compression wood: its late wood is darker than the stem's. Extra relative
+    /// darkening of the late wood inside knots (times the late-wood share), drawing a knot's
+    /// rings as the thin dark lines photographs show instead of the stem's soft bands.
+    double knotRingDarkening = 0;
+    double deadKnotRim = 0.5;  ///< relative darkening of the bark ring of dead knots
     /// m: the bark ring's width (the branch's bark when it died, encased by the trunk).
     double deadKnotRimWidth = 0.0015;
     double deadKnotChecks = 0.5;         ///< probability that a dead knot has a drying check

@@ -22,6 +22,8 @@ Rgb woodColour(const GrowthSample& s, const Vec3& treePoint, const ColourParams&
                                 microStructure(treePoint, c.microCellSize, c.microSeed);
     const KnotLook knot = knotLook(s, c, footprint);
     brightness *= 1 - knot.darkening;
+    // Knot wood's late wood, darker than the stem's (compression wood).
+    if (knot.tint > 0) brightness *= 1 - c.knotRingDarkening * knot.tint * e;
     // Knot wood's own hue, where the knot's branch wins the blend.
     if (knot.tint > 0)
         colour = multiply(

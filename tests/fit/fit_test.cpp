@@ -307,6 +307,10 @@ TEST(WoodFit, PutsTheBranchOfABakedKnotThroughBothFacesItCrosses) {
     }
     // The knot's size: the branch's birth where it crosses C (year 7), from the knot's radius.
     EXPECT_NEAR(fit.branches[0].birth, 7.06, 1.0);
+    // The knot wood's rings as contrasted as baked (the preset's: no extra late-wood
+    // darkening), and none invented.
+    EXPECT_NEAR(fit.knotRings.baked, fit.knotRings.photo, 0.1 * fit.knotRings.photo);
+    EXPECT_LT(fit.grain["colour"]["knots"].value("ring_darkening", 0.0), 0.1);
     const std::vector<double>& b = fit.profile.boundaries;
     ASSERT_GE(b.size(), 4u);
     EXPECT_GT((b.back() - b.front()) / double(b.size() - 1), 0.0025);
@@ -321,6 +325,9 @@ TEST(WoodFit, PutsTheKnotOfHinokiH11WhereThePhotosShowIt) {
     ASSERT_EQ(fit.branches.size(), 1u);
     EXPECT_EQ(fit.branches[0].faces.size(), 2u);
     ASSERT_EQ(fit.knots.size(), 2u) << "the knot is seen on C and F and nowhere else";
+    // Its rings' contrast as photographed (the preset's knots have the stem's soft rings).
+    EXPECT_NEAR(fit.knotRings.baked, fit.knotRings.photo, 0.1 * fit.knotRings.photo);
+    EXPECT_GT(fit.grain["colour"]["knots"].value("ring_darkening", 0.0), 0.1);
     for (const KnotFigures& k : fit.knots) {
         ASSERT_TRUE(k.photo.face == "C" || k.photo.face == "F") << k.photo.face;
         const double markColumn = k.photo.face == "C" ? 71 : 142;

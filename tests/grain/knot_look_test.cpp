@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "grain/growth_field.h"
+#include "grain/wood_colour.h"
 #include "skeleton/skeleton_index.h"
 #include "tests/test_trees.h"
 
@@ -114,6 +115,29 @@ TEST(KnotLook, CoreIsDarkerThanTheEdgeAndClearWoodIsUntouched) {
     EXPECT_NEAR(pith - edge, c.knotCore, 0.01);
     EXPECT_NEAR(edge, c.knotDarkening, 0.01);
     EXPECT_EQ(knotLook(s, c).rim, 0);  // a live knot has no bark ring
+}
+
+// Knot wood's late wood is darker by ring_darkening x E; early wood (E = 0) and clear wood are
+// as without it.
+TEST(KnotLook, RingDarkeningDarkensTheKnotsLateWoodOnly) {
+    ColourParams plain, ringed;
+    plain.heartwood = ringed.heartwood = false;
+    ringed.knotRingDarkening = 0.4;
+    GrowthSample s;
+    s.T = 5.5;
+    s.knot = 1;
+    s.knotChain = 3;
+    s.knotRadius = 0.006;
+    s.knotAxisDirection = {1, 0, 0};
+    s.knotAxisDistance = 0.003;
+    const Vec3 p{0.1, 0, 1};
+    for (double e : {0.0, 0.5, 1.0}) {
+        const Rgb a = woodColour(s, p, plain, e, 0), b = woodColour(s, p, ringed, e, 0);
+        EXPECT_NEAR(b.g, a.g * (1 - 0.4 * e), 1e-12) << "E " << e;
+    }
+    GrowthSample clear;
+    clear.T = 5.5;
+    EXPECT_EQ(woodColour(clear, p, plain, 1, 0).g, woodColour(clear, p, ringed, 1, 0).g);
 }
 
 // A footprint wider than the ring spreads it: its coverage integrates to the ring's width.
