@@ -8,9 +8,6 @@ namespace nenrin {
 
 namespace {
 
-/// Knot wood: where the bake's knot share is past the top of the knot colour's smoothstep.
-constexpr float kKnotWood = 0.75f;
-constexpr int kMinPixels = 50;
 /// The knot colours' defaults (docs/grain-format.md) when the grain sets none.
 constexpr double kDefaultDarkening = 0.25;
 /// The total darkening is clamped at 0.95 (grain/knot_look.h).
@@ -26,7 +23,7 @@ bool matchKnotColour(nlohmann::json& grain, std::span<const FaceFigures> faces) 
         for (int y = 0; y < f.bake.height; ++y)
             for (int x = 0; x < f.bake.width; ++x) {
                 const float* v = f.bake.at(x, y);
-                if (v[5] < kKnotWood) continue;
+                if (!isKnotWood(v)) continue;
                 for (size_t c = 0; c < 3; ++c) {
                     photo[c] += f.photo[c].at(x, y);
                     baked[c] += std::max(0.0f, v[c]);
@@ -34,7 +31,7 @@ bool matchKnotColour(nlohmann::json& grain, std::span<const FaceFigures> faces) 
                 ++pixels;
             }
     }
-    if (pixels < kMinPixels) return false;
+    if (pixels < kMinKnotWoodPixels) return false;
     nlohmann::json& knots = grain["colour"]["knots"];
     if (!knots.is_object()) knots = nlohmann::json::object();
     const double darkening = knots.value("darkening", kDefaultDarkening);

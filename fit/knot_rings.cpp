@@ -10,9 +10,6 @@ namespace nenrin {
 
 namespace {
 
-/// Knot wood: where the bake's knot share is past the top of the knot colour's smoothstep.
-constexpr float kKnotWood = 0.75f;
-constexpr int kMinPixels = 50;
 /// Ring scale at 256 x 256: a knot's rings are 1–1.5 mm apart, 5–8 px on a 50 mm face; the
 /// 1 px blur takes out sanding scratches and pores, the 4 px one the knot's colour gradient.
 constexpr double kFine = 1, kCoarse = 4;
@@ -44,14 +41,14 @@ KnotRingContrast knotRingContrast(std::span<const FacePhoto> photos,
             throw std::logic_error("knotRingContrast: photograph and bake differ in size");
         bool any = false;
         for (int y = 0; y < f.bake.height && !any; ++y)
-            for (int x = 0; x < f.bake.width && !any; ++x) any = f.bake.at(x, y)[5] >= kKnotWood;
+            for (int x = 0; x < f.bake.width && !any; ++x) any = isKnotWood(f.bake.at(x, y));
         if (!any) continue;
         const Plane p = bandPass(photoL), b = bandPass(f.lightness);
         // A border of the coarse blur's reach left out: the filters reflect at the edges.
         const int border = int(4 * kCoarse + 0.5);
         for (int y = border; y < f.bake.height - border; ++y)
             for (int x = border; x < f.bake.width - border; ++x) {
-                if (f.bake.at(x, y)[5] < kKnotWood) continue;
+                if (!isKnotWood(f.bake.at(x, y))) continue;
                 photo2 += p.at(x, y) * p.at(x, y);
                 baked2 += b.at(x, y) * b.at(x, y);
                 ++out.pixels;
@@ -64,11 +61,11 @@ KnotRingContrast knotRingContrast(std::span<const FacePhoto> photos,
     return out;
 }
 
-KnotRingContrast matchKnotRings(nlohmann::json& grain, std::vector<FaceFigures>& faces,
-                                std::span<const FacePhoto> photos,
-                                const std::function<std::vector<FaceFigures>()>& rebake) {
+void matchKnotRings(nlohmann::json& grain, std::vector<FaceFigures>& faces,
+                    std::span<const FacePhoto> photos,
+                    const std::function<std::vector<FaceFigures>()>& rebake) {
     const KnotRingContrast start = knotRingContrast(photos, faces);
-    if (start.pixels < kMinPixels || start.baked >= start.photo * (1 - kTolerance)) return start;
+    if (start.pixels < kMinKnotWoodPixels || start.baked >= start.photo * (1 - kTolerance)) return;
     nlohmann::json& knots = grain["colour"]["knots"];
     if (!knots.is_object()) knots = nlohmann::json::object();
     const double before = knots.value("ring_darkening", 0.0);
@@ -79,10 +76,9 @@ KnotRingContrast matchKnotRings(nlohmann::json& grain, std::vector<FaceFigures>&
     const double slope = (probed.baked - start.baked) / (probe - before);
     const double wanted = slope > 0 ? before + (start.photo - start.baked) / slope : before;
     const double value = std::round(std::clamp(wanted, 0.0, kMaxRingDarkening) * 1e4) / 1e4;
-    if (value == probe) return probed;
+    if (value == probe) return;
     knots["ring_darkening"] = value;
     faces = rebake();
-    return knotRingContrast(photos, faces);
 }
 
 }  // namespace nenrin

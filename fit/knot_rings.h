@@ -23,11 +23,11 @@ KnotRingContrast knotRingContrast(std::span<const FacePhoto> photos,
 /// Sets `colour.knots.ring_darkening` of `grain` (0 .. 0.9) so that the bakes' knot ring
 /// contrast is the photographs': one probe bake at 0.3, then the value on the line through the
 /// two (contrast grows about linearly with it), and `rebake` once more. `faces` are the bakes
-/// of `grain` as it is; `rebake` bakes them again from `grain`. Returns the contrast reached;
-/// without enough knot wood (50 pixels), or where the bake's rings are as contrasted as the
-/// photo's already, changes nothing.
-KnotRingContrast matchKnotRings(nlohmann::json& grain, std::vector<FaceFigures>& faces,
-                                std::span<const FacePhoto> photos,
-                                const std::function<std::vector<FaceFigures>()>& rebake);
+/// of `grain` as it is; `rebake` bakes them again from `grain`. Without enough knot wood
+/// (kMinKnotWoodPixels), or where the bake's rings are as contrasted as the photo's already,
+/// changes nothing.
+void matchKnotRings(nlohmann::json& grain, std::vector<FaceFigures>& faces,
+                    std::span<const FacePhoto> photos,
+                    const std::function<std::vector<FaceFigures>()>& rebake);
 
 }  // namespace nenrin

@@ -36,6 +36,12 @@ struct FitOptions {
 };
 
 /// One face's bake against its photograph.
+/// A bake's pixel (FaceFigures::bake) is knot wood where its knot share is past the top of
+/// the knot colour's smoothstep: the knot colour and ring fits compare photo and bake there,
+/// given at least kMinKnotWoodPixels such pixels.
+inline bool isKnotWood(const float* bakePixel) { return bakePixel[5] >= 0.75f; }
+constexpr int kMinKnotWoodPixels = 50;
+
 struct FaceFigures {
     std::string name;
     bool heldOut = false;
