@@ -65,11 +65,15 @@ void matchKnotRings(nlohmann::json& grain, std::vector<FaceFigures>& faces,
                     std::span<const FacePhoto> photos,
                     const std::function<std::vector<FaceFigures>()>& rebake) {
     const KnotRingContrast start = knotRingContrast(photos, faces);
-    if (start.pixels < kMinKnotWoodPixels || start.baked >= start.photo * (1 - kTolerance)) return;
+    const double gap = start.photo - start.baked;
+    if (start.pixels < kMinKnotWoodPixels || std::abs(gap) <= kTolerance * start.photo) return;
     nlohmann::json& knots = grain["colour"]["knots"];
     if (!knots.is_object()) knots = nlohmann::json::object();
     const double before = knots.value("ring_darkening", 0.0);
-    const double probe = std::min(kMaxRingDarkening, before + kProbe);
+    // Towards the photographs' contrast: the base grain's value (a preset's) may be too much.
+    const double probe =
+        gap > 0 ? std::min(kMaxRingDarkening, before + kProbe) : std::max(0.0, before - kProbe);
+    if (probe == before) return;  // at the end of the range already
     knots["ring_darkening"] = probe;
     faces = rebake();
     const KnotRingContrast probed = knotRingContrast(photos, faces);

@@ -21,11 +21,12 @@ KnotRingContrast knotRingContrast(std::span<const FacePhoto> photos,
                                   std::span<const FaceFigures> faces);
 
 /// Sets `colour.knots.ring_darkening` of `grain` (0 .. 0.9) so that the bakes' knot ring
-/// contrast is the photographs': one probe bake at 0.3, then the value on the line through the
-/// two (contrast grows about linearly with it), and `rebake` once more. `faces` are the bakes
-/// of `grain` as it is; `rebake` bakes them again from `grain`. Without enough knot wood
-/// (kMinKnotWoodPixels), or where the bake's rings are as contrasted as the photo's already,
-/// changes nothing.
+/// contrast is the photographs': one probe bake 0.3 up (or down, where the base grain's rings
+/// are too contrasted), then the value on the line through the two (contrast grows about
+/// linearly with it), and `rebake` once more. `faces` are the bakes of `grain` as it is;
+/// `rebake` bakes them again from `grain`. Without enough knot wood (kMinKnotWoodPixels), or
+/// where the bake's rings are as contrasted as the photo's already (within 5 %), changes
+/// nothing.
 void matchKnotRings(nlohmann::json& grain, std::vector<FaceFigures>& faces,
                     std::span<const FacePhoto> photos,
                     const std::function<std::vector<FaceFigures>()>& rebake);

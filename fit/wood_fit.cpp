@@ -307,10 +307,15 @@ void placeBranches(WoodFit& fit, const std::vector<FaceKnot>& knots, const Sampl
     fit.branches =
         knotBranches(knots, fit.pith, sample.faces, fit.pith.distance + length(sample.size) + 0.01,
                      meanRingWidth(fit.profile));
-    // Branches placed again keep the sizes found for them.
+    // Branches placed again keep the sizes found for them, with the knot they were found on:
+    // the birth is the year the tip passed that knot (when two faces' knots are crossed about
+    // as squarely, the new line may prefer the other, farther out along the branch).
     for (KnotBranch& b : fit.branches)
         for (const KnotBranch& old : sized)
-            if (old.faces == b.faces) b.gamma = old.gamma, b.birth = old.birth;
+            if (old.faces == b.faces) {
+                b.gamma = old.gamma, b.birth = old.birth;
+                b.sizedBy = old.sizedBy, b.sizedAt = old.sizedAt, b.radius = old.radius;
+            }
     fit.skeleton = pithSkeleton(fit.pith, fit.profile);
     addKnotBranches(fit.skeleton, fit.branches);
 }

@@ -165,13 +165,27 @@ struct SyntheticSample {
     Vec3 branchDirection() const { return normalize(Vec3{1, 0.25, -1}); }
 };
 
+/// The synthetic branch: m long, its tip there in this year (it grows out at a steady pace).
+constexpr double kBranchLength = 0.15, kBranchBirthAtEnd = 21;
+
 /// Where the branch crosses the plane through `origin` with normal `n`.
 Vec3 branchCrossing(const SyntheticSample& s, const Vec3& origin, const Vec3& n) {
     const Vec3 u = s.branchDirection();
     return s.branchStart() + u * (dot(origin - s.branchStart(), n) / dot(u, n));
 }
 
-SyntheticSample bakeSyntheticSample(const fs::path& dir, bool knot = false) {
+/// The hinoki preset with its knots' late-wood darkening set to `ringDarkening`.
+nlohmann::json hinokiWith(double ringDarkening) {
+    nlohmann::json grain = nlohmann::json::parse(
+        std::ifstream(fs::path(NENRIN_SOURCE_DIR) / "scenes/grain/species/hinoki.json"));
+    grain["colour"]["knots"]["ring_darkening"] = ringDarkening;
+    return grain;
+}
+
+/// The cube baked with hinoki's colours and anatomy (its knots' late wood darkened by
+/// `knotRingDarkening`).
+SyntheticSample bakeSyntheticSample(const fs::path& dir, bool knot = false,
+                                    double knotRingDarkening = 0) {
     SyntheticSample s;
     s.knot = knot;
     std::mt19937 random(3);
@@ -183,12 +197,12 @@ SyntheticSample bakeSyntheticSample(const fs::path& dir, bool knot = false) {
     if (knot) {
         ChainProperties props;
         props.gamma = 0.3;
-        skeleton.addBranch(0, {s.branchStart(), s.branchStart() + s.branchDirection() * 0.15},
-                           {0, 21}, props);
+        skeleton.addBranch(0,
+                           {s.branchStart(), s.branchStart() + s.branchDirection() * kBranchLength},
+                           {0, kBranchBirthAtEnd}, props);
     }
     // Hinoki's colours and anatomy, its ring shapes off: the rings are cylinders.
-    nlohmann::json grain = nlohmann::json::parse(
-        std::ifstream(fs::path(NENRIN_SOURCE_DIR) / "scenes/grain/species/hinoki.json"));
+    nlohmann::json grain = hinokiWith(knotRingDarkening);
     for (const char* key : {"sway", "wander", "direction", "rings"}) grain.erase(key);
     const GrownTree tree(Skeleton(skeleton), parseGrain(grain, "hinoki"));
     const WoodShader shader(tree.field());
@@ -265,34 +279,43 @@ TEST(WoodFit, RecoversThePithAndTheRingWidthsOfABakedCube) {
     EXPECT_TRUE(fit.knots.empty());
 }
 
-/// Two threads, quiet, the anatomy (and the knots' junction) of the hinoki preset.
-FitOptions hinokiOptions() {
+/// Two threads, quiet, the anatomy (and the knots' junction) of `base` (the hinoki preset).
+FitOptions hinokiOptions(const fs::path& base = fs::path(NENRIN_SOURCE_DIR) /
+                                                "scenes/grain/species/hinoki.json") {
     FitOptions options;
     options.threads = 2;
     options.quiet = true;
-    options.baseGrains = {
-        (fs::path(NENRIN_SOURCE_DIR) / "scenes/grain/species/hinoki.json").string()};
+    options.baseGrains = {base.string()};
     return options;
 }
 
-TEST(WoodFit, PutsTheBranchOfABakedKnotThroughBothFacesItCrosses) {
-    const SyntheticSample truth = bakeSyntheticSample(scratch("knot"), true);
+/// The cube with a knot baked with `truthDarkening` (the knots' late-wood darkening), fitted
+/// from the hinoki preset with `baseDarkening`: the branch in place and sized, the faces' rings
+/// as baked, the knot wood's ring contrast matched. Returns the fit.
+WoodFit expectBakedKnotFitted(const std::string& name, double truthDarkening,
+                              double baseDarkening) {
+    const SyntheticSample truth = bakeSyntheticSample(scratch(name), true, truthDarkening);
     const Sample sample = loadSampleFile(truth.file.string());
+    const fs::path base = scratch(name + "-base") / "hinoki.json";
+    writeJson(base, hinokiWith(baseDarkening));
     // The knot's flanks are the junction's (eq. 5): from the grain it was baked with.
-    const WoodFit fit = fitSample(sample, hinokiOptions());
-    ASSERT_EQ(fit.branches.size(), 1u);
+    WoodFit fit = fitSample(sample, hinokiOptions(base));
+    EXPECT_EQ(fit.branches.size(), 1u);
+    if (fit.branches.size() != 1) return fit;
     EXPECT_EQ(fit.branches[0].faces.size(), 2u) << "one branch through both faces";
-    ASSERT_EQ(fit.knots.size(), 2u) << "the knot is seen on C and F and nowhere else";
+    EXPECT_EQ(fit.knots.size(), 2u) << "the knot is seen on C and F and nowhere else";
     for (const KnotFigures& k : fit.knots) {
-        ASSERT_TRUE(k.photo.face == "C" || k.photo.face == "F") << k.photo.face;
+        EXPECT_TRUE(k.photo.face == "C" || k.photo.face == "F") << k.photo.face;
         const CubeFace& f = k.photo.face == "C" ? kCube[2] : kCube[5];
         const Vec3 crossing = branchCrossing(truth, f.origin, normalize(cross(f.right, f.up)));
         // The knot's rings centre near where the branch crosses (a branch growing out slowly
         // has eccentric rings, their centres towards the pith: 3-4 mm here) ...
         EXPECT_LT(length(k.photo.centre - crossing), 0.005) << "face " << f.name;
         // ... and the fitted branch bakes its knot onto the photographed one.
-        ASSERT_TRUE(k.baked.has_value()) << "face " << f.name;
-        EXPECT_LT(k.offsetMm, 1.0) << "face " << f.name;
+        EXPECT_TRUE(k.baked.has_value()) << "face " << f.name;
+        if (k.baked) {
+            EXPECT_LT(k.offsetMm, 1.0) << "face " << f.name;
+        }
     }
     // The faces the branch does not reach as without a knot, the knot's two within 15 deg.
     // (E, which the branch passes just outside, is not held: its flank there depends on
@@ -305,16 +328,42 @@ TEST(WoodFit, PutsTheBranchOfABakedKnotThroughBothFacesItCrosses) {
             EXPECT_LT(f.ringMedianDeg, 15) << "face " << f.name;
         }
     }
-    // The knot's size: the branch's birth where it crosses C (year 7), from the knot's radius.
-    EXPECT_NEAR(fit.branches[0].birth, 7.06, 1.0);
-    // The knot wood's rings as contrasted as baked (the preset's: no extra late-wood
-    // darkening), and none invented.
+    // The knot's size: the branch's birth where it crosses the face that sized it (year 7 at
+    // C, 12 at F: the branch crosses both equally squarely, so either may), from the knot's
+    // radius.
+    const CubeFace& sizer = fit.branches[0].sizedBy == "C" ? kCube[2] : kCube[5];
+    const double path =
+        length(branchCrossing(truth, sizer.origin, normalize(cross(sizer.right, sizer.up))) -
+               truth.branchStart());
+    EXPECT_NEAR(fit.branches[0].birth, kBranchBirthAtEnd * path / kBranchLength, 1.0)
+        << "sized by " << fit.branches[0].sizedBy;
+    // The knot wood's rings as contrasted as baked.
     EXPECT_NEAR(fit.knotRings.baked, fit.knotRings.photo, 0.1 * fit.knotRings.photo);
-    EXPECT_LT(fit.grain["colour"]["knots"].value("ring_darkening", 0.0), 0.1);
     const std::vector<double>& b = fit.profile.boundaries;
-    ASSERT_GE(b.size(), 4u);
-    EXPECT_GT((b.back() - b.front()) / double(b.size() - 1), 0.0025);
-    EXPECT_LT((b.back() - b.front()) / double(b.size() - 1), 0.004);
+    EXPECT_GE(b.size(), 4u);
+    if (b.size() >= 4) {
+        EXPECT_GT((b.back() - b.front()) / double(b.size() - 1), 0.0025);
+        EXPECT_LT((b.back() - b.front()) / double(b.size() - 1), 0.004);
+    }
+    return fit;
+}
+
+double ringDarkening(const WoodFit& fit) {
+    return fit.grain["colour"]["knots"].value("ring_darkening", 0.0);
+}
+
+TEST(WoodFit, PutsTheBranchOfABakedKnotThroughBothFacesItCrosses) {
+    // A knot whose late wood is no darker than the stem's, fitted from the preset (0.25):
+    // the darkening is taken out, none invented.
+    const WoodFit fit = expectBakedKnotFitted("knot", 0, 0.25);
+    EXPECT_LT(ringDarkening(fit), 0.1);
+}
+
+TEST(WoodFit, FindsTheDarkRingsOfABakedKnot) {
+    // The preset's knot (late wood darkened 0.25, as fitted to the photographed hinoki knot),
+    // fitted from a grain without: the darkening is found.
+    const WoodFit fit = expectBakedKnotFitted("dark-knot", 0.25, 0);
+    EXPECT_NEAR(ringDarkening(fit), 0.25, 0.1);
 }
 
 TEST(WoodFit, PutsTheKnotOfHinokiH11WhereThePhotosShowIt) {
@@ -325,7 +374,7 @@ TEST(WoodFit, PutsTheKnotOfHinokiH11WhereThePhotosShowIt) {
     ASSERT_EQ(fit.branches.size(), 1u);
     EXPECT_EQ(fit.branches[0].faces.size(), 2u);
     ASSERT_EQ(fit.knots.size(), 2u) << "the knot is seen on C and F and nowhere else";
-    // Its rings' contrast as photographed (the preset's knots have the stem's soft rings).
+    // Its rings' contrast as photographed (the preset's ring darkening, 0.25, is this fit's).
     EXPECT_NEAR(fit.knotRings.baked, fit.knotRings.photo, 0.1 * fit.knotRings.photo);
     EXPECT_GT(fit.grain["colour"]["knots"].value("ring_darkening", 0.0), 0.1);
     for (const KnotFigures& k : fit.knots) {
