@@ -78,7 +78,7 @@ void matchKnotRings(nlohmann::json& grain, std::vector<FaceFigures>& faces,
     faces = rebake();
     const KnotRingContrast probed = knotRingContrast(photos, faces);
     const double slope = (probed.baked - start.baked) / (probe - before);
-    const double wanted = slope > 0 ? before + (start.photo - start.baked) / slope : before;
+    const double wanted = slope > 0 ? before + gap / slope : before;
     const double value = std::round(std::clamp(wanted, 0.0, kMaxRingDarkening) * 1e4) / 1e4;
     if (value == probe) return;
     knots["ring_darkening"] = value;

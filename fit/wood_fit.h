@@ -36,12 +36,6 @@ struct FitOptions {
 };
 
 /// One face's bake against its photograph.
-/// A bake's pixel (FaceFigures::bake) is knot wood where its knot share is past the top of
-/// the knot colour's smoothstep: the knot colour and ring fits compare photo and bake there,
-/// given at least kMinKnotWoodPixels such pixels.
-inline bool isKnotWood(const float* bakePixel) { return bakePixel[5] >= 0.75f; }
-constexpr int kMinKnotWoodPixels = 50;
-
 struct FaceFigures {
     std::string name;
     bool heldOut = false;
@@ -52,6 +46,12 @@ struct FaceFigures {
     Plane lightness;             ///< the bake's L*
     std::array<Plane, 3> photo;  ///< the photograph at 256 x 256, scene-linear
 };
+
+/// A bake's pixel (FaceFigures::bake) is knot wood where its knot share is past the top of
+/// the knot colour's smoothstep: the knot colour and ring fits compare photo and bake there,
+/// given at least kMinKnotWoodPixels such pixels.
+inline bool isKnotWood(const float* bakePixel) { return bakePixel[5] >= 0.75f; }
+constexpr int kMinKnotWoodPixels = 50;
 
 /// A knot seen in one face's photograph and where the fitted wood's bake puts it.
 struct KnotFigures {
