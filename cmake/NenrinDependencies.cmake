@@ -18,6 +18,7 @@ find_package(Ceres CONFIG REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)
 pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)
+pkg_check_modules(LIBDEFLATE REQUIRED IMPORTED_TARGET libdeflate)
 
 # Quirk: Debian's OpenImageIO target lists /usr/include/opencv4, which does not exist.
 foreach(prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)

@@ -1,26 +1,129 @@
 #include "renderer/exr_file.h"
 
 // OpenEXR itself rather than OpenImageIO: OpenImageIO pulls some 260 shared libraries (video,
-// camera raw, DICOM codecs) into every process, which a cluster pays once per task.
+// camera raw, DICOM codecs) into every process, which a cluster pays once per task. Files are
+// written with OpenEXRCore (the C API: it takes chunks compressed by the caller, here by
+// libdeflate) and read with the C++ API.
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
-#include <OpenEXR/ImfThreading.h>
+#include <OpenEXR/openexr.h>
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cstring>
 #include <exception>
-#include <fstream>
+#include <span>
 
+#include "renderer/exr_zip.h"
 #include "renderer/finite_output.h"
 #include "util/input_error.h"
 
 namespace nenrin {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "EXR samples are little-endian and are packed here as they lie in memory");
+
+/// The file an EXR is written to through OpenEXRCore, and the first error met writing it.
+class ExrStream {
+public:
+    ExrStream(const std::string& writePath, const std::string& finalPath)
+        : finalPath_(finalPath),
+          fd_(::open(writePath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) {
+        if (fd_ < 0)
+            throw InputError(finalPath, "output",
+                             std::string("cannot open it for writing: ") + std::strerror(errno));
+    }
+    ~ExrStream() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    ExrStream(const ExrStream&) = delete;
+    ExrStream& operator=(const ExrStream&) = delete;
+
+    /// Throws InputError for a failed OpenEXRCore call.
+    void check(exr_result_t result) const {
+        if (result == EXR_ERR_SUCCESS) return;
+        throw InputError(
+            finalPath_, "output",
+            "could not write the EXR (disk full?): " +
+                (error_.empty() ? std::string(exr_get_default_error_message(result)) : error_));
+    }
+    /// Closes the file; a failure (a full disk on some file systems) throws InputError.
+    void close() {
+        const int fd = fd_;
+        fd_ = -1;
+        if (::close(fd) != 0) {
+            error_ = std::strerror(errno);
+            check(EXR_ERR_WRITE_IO);
+        }
+    }
+
+    static int64_t writeAt(exr_const_context_t, void* user, const void* buffer, uint64_t size,
+                           uint64_t offset, exr_stream_error_func_ptr_t) {
+        auto* self = static_cast<ExrStream*>(user);
+        const char* bytes = static_cast<const char*>(buffer);
+        for (uint64_t done = 0; done < size;) {
+            const ssize_t n = ::pwrite(self->fd_, bytes + done, size - done, off_t(offset + done));
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) {
+                if (self->error_.empty()) self->error_ = std::strerror(n < 0 ? errno : ENOSPC);
+                return -1;
+            }
+            done += uint64_t(n);
+        }
+        return int64_t(size);
+    }
+    static void onError(exr_const_context_t context, exr_result_t, const char* message) {
+        void* user = nullptr;
+        if (exr_get_user_data(context, &user) != EXR_ERR_SUCCESS || !user) return;
+        auto* self = static_cast<ExrStream*>(user);
+        if (self->error_.empty()) self->error_ = message;
+    }
+
+private:
+    std::string finalPath_;
+    int fd_;
+    std::string error_;
+};
+
+/// One thread's buffers for the blocks of an EXR: rows packed as OpenEXR lays them out, then
+/// compressed.
+class BlockPacker {
+public:
+    /// Rows [r0, r1) of the band (each row: every channel of `order` in turn), compressed.
+    std::span<const uint8_t> pack(const std::vector<const ExrChannel*>& order, int width, int r0,
+                                  int r1) {
+        packed_.resize(size_t(r1 - r0) * order.size() * width * sizeof(float));
+        auto* out = reinterpret_cast<float*>(packed_.data());
+        for (int r = r0; r < r1; ++r)
+            for (const ExrChannel* c : order) {
+                const float* in = c->values + size_t(r) * width * c->stride;
+                if (c->stride == 1)
+                    out = std::copy(in, in + width, out);
+                else
+                    for (int i = 0; i < width; ++i) *out++ = in[size_t(i) * c->stride];
+            }
+        return compressor_.compress(packed_);
+    }
+
+private:
+    std::vector<uint8_t> packed_;
+    ExrZipCompressor compressor_;
+};
+
+}  // namespace
 
 void writeFloatExr(const std::string& finalPath, const std::string& writePath, int width,
                    int height, const std::vector<std::string>& channels, const float* pixels,
@@ -41,48 +144,77 @@ void writeFloatExrChannels(const std::string& finalPath, const std::string& writ
     const size_t samples = size_t(end - band.begin) * width;
     for (const ExrChannel& c : channels)
         requireFiniteChannel(c.values, c.stride, samples, c.name, width, band.begin, finalPath);
-    const Imath::Box2i display({0, 0}, {width - 1, height - 1});
-    const Imath::Box2i data({0, band.begin}, {width - 1, end - 1});
-    // zip at level 1: nearly the size of the default level, at a fraction of the time.
-    Imf::Header header(display, data, 1, Imath::V2f(0, 0), 1, Imf::INCREASING_Y,
-                       Imf::ZIP_COMPRESSION);
-    header.zipCompressionLevel() = 1;
+    ExrStream stream(writePath, finalPath);
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = &ExrStream::onError;
+    init.user_data = &stream;
+    init.write_fn = &ExrStream::writeAt;
+    exr_context_t context = nullptr;
+    stream.check(exr_start_write(&context, writePath.c_str(), EXR_WRITE_FILE_DIRECTLY, &init));
+    // Finished (its chunk offset table written) or, on an error, released.
+    struct Finish {
+        exr_context_t& context;
+        ~Finish() {
+            if (context) exr_finish(&context);
+        }
+    } finish{context};
+    int part = 0;
+    stream.check(exr_add_part(context, "", EXR_STORAGE_SCANLINE, &part));
+    const exr_attr_box2i_t display{{0, 0}, {width - 1, height - 1}};
+    const exr_attr_box2i_t data{{0, band.begin}, {width - 1, end - 1}};
+    const exr_attr_v2f_t centre{0, 0};
+    stream.check(exr_initialize_required_attr(context, part, &display, &data, 1.0f, &centre, 1.0f,
+                                              EXR_LINEORDER_INCREASING_Y, EXR_COMPRESSION_ZIP));
+    for (const ExrChannel& c : channels)
+        stream.check(exr_add_channel(context, part, c.name.c_str(), EXR_PIXEL_FLOAT,
+                                     EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1));
     if (values == ExrValues::SceneLinear)
-        header.insert("oiio:ColorSpace", Imf::StringAttribute("Linear"));
+        stream.check(exr_attr_set_string(context, part, "oiio:ColorSpace", "Linear"));
     else
-        header.insert("colorInteropID", Imf::StringAttribute("data"));
+        stream.check(exr_attr_set_string(context, part, "colorInteropID", "data"));
     for (const auto& [key, value] : metadata)
-        header.insert("nenrin:" + key, Imf::StringAttribute(value));
-    Imf::FrameBuffer frame;
-    for (const ExrChannel& c : channels) {
-        const size_t stride = c.stride * sizeof(float);
-        // The frame buffer is addressed by absolute pixel position: the band's first row is
-        // values[0], so the base pointer is moved back by band.begin rows (never dereferenced).
-        const char* base =
-            reinterpret_cast<const char*>(c.values) -
-            static_cast<ptrdiff_t>(band.begin) * width * static_cast<ptrdiff_t>(stride);
-        header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
-        frame.insert(c.name,
-                     Imf::Slice(Imf::FLOAT, const_cast<char*>(base), stride, stride * width));
+        stream.check(exr_attr_set_string(context, part, ("nenrin:" + key).c_str(), value.c_str()));
+    stream.check(exr_write_header(context));
+
+    // The channels in the file's order (sorted by name), as each row of a block packs them.
+    const exr_attr_chlist_t* list = nullptr;
+    stream.check(exr_get_channels(context, part, &list));
+    std::vector<const ExrChannel*> order;
+    for (int i = 0; i < list->num_channels; ++i)
+        for (const ExrChannel& c : channels)
+            if (c.name == list->entries[i].name.str) order.push_back(&c);
+    if (order.size() != channels.size())
+        throw InputError(finalPath, "output", "two channels of the EXR share a name");
+    int32_t rowsPerBlock = 0;
+    stream.check(exr_get_scanlines_per_chunk(context, part, &rowsPerBlock));
+    const int blocks = (end - band.begin + rowsPerBlock - 1) / rowsPerBlock;
+    // Blocks are compressed in batches (side by side with threads > 1), then written in order:
+    // the bytes do not depend on the thread count.
+    const int batch = std::max(1, threads) * 8;
+    std::vector<std::vector<uint8_t>> stored(static_cast<size_t>(batch));
+    tbb::enumerable_thread_specific<BlockPacker> packers;
+    tbb::task_arena arena(std::max(1, threads));
+    for (int first = 0; first < blocks; first += batch) {
+        const int count = std::min(batch, blocks - first);
+        auto compressBlock = [&](int k) {
+            const int y0 = band.begin + (first + k) * rowsPerBlock;
+            const int y1 = std::min(end, y0 + rowsPerBlock);
+            BlockPacker& packer = packers.local();
+            const auto bytes = packer.pack(order, width, y0 - band.begin, y1 - band.begin);
+            stored[size_t(k)].assign(bytes.begin(), bytes.end());
+        };
+        if (threads > 1)
+            arena.execute([&] { tbb::parallel_for(0, count, compressBlock); });
+        else
+            for (int k = 0; k < count; ++k) compressBlock(k);
+        for (int k = 0; k < count; ++k)
+            stream.check(
+                exr_write_scanline_chunk(context, part, band.begin + (first + k) * rowsPerBlock,
+                                         stored[size_t(k)].data(), stored[size_t(k)].size()));
     }
-    // Our own stream, so that the last writes (the line offsets, written when the file object
-    // is destroyed, where OpenEXR cannot report an error) are checked when it is closed.
-    std::ofstream stream(writePath, std::ios::binary | std::ios::trunc);
-    try {
-        Imf::StdOFStream out(stream, writePath.c_str());
-        // Each block of 16 rows is compressed on its own, so the blocks can be compressed
-        // side by side: at two threads, the write of a 512 x 512 render was a quarter of its
-        // time.
-        if (threads > 1 && Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
-        Imf::OutputFile file(out, header, threads > 1 ? threads : 0);
-        file.setFrameBuffer(frame);
-        file.writePixels(end - band.begin);
-    } catch (const std::exception& e) {
-        throw InputError(finalPath, "output",
-                         std::string("could not write the EXR (disk full?): ") + e.what());
-    }
+    // The chunk offset table is written here.
+    stream.check(exr_finish(&context));
     stream.close();
-    if (!stream) throw InputError(finalPath, "output", "could not write the EXR (disk full?)");
 }
 
 FloatExr readFloatExr(const std::string& path) {

@@ -1,11 +1,14 @@
 // renderer/exr_file: an EXR written with its blocks compressed on several threads is the same
 // file, byte for byte, as one written on one thread, and reads back as written; channels
-// written from separate planes make the same file as the same values interleaved.
+// written from separate planes make the same file as the same values interleaved; blocks our
+// ZIP encoder (renderer/exr_zip) cannot shrink are stored raw, and OpenEXR reads both kinds.
 
 #include "renderer/exr_file.h"
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -14,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/exr_zip.h"
 #include "renderer/film.h"
 #include "util/hash.h"
 
@@ -116,6 +120,45 @@ TEST(ExrFile, ChannelsApartInMemoryWriteTheSameFileAsInterleaved) {
     }
     EXPECT_FALSE(std::filesystem::exists(b));
     std::filesystem::remove(a);
+}
+
+TEST(ExrZip, KeepsWhatDoesNotShrinkAndShrinksWhatRepeats) {
+    ExrZipCompressor zip;
+    std::vector<uint8_t> noise(4096), smooth(4096);
+    for (size_t i = 0; i < noise.size(); ++i) {
+        noise[i] = static_cast<uint8_t>(uniform01(5, i) * 256);
+        smooth[i] = static_cast<uint8_t>(i / 64);
+    }
+    const auto kept = zip.compress(noise);
+    EXPECT_EQ(kept.data(), noise.data());
+    EXPECT_EQ(kept.size(), noise.size());
+    const auto shrunk = zip.compress(smooth);
+    EXPECT_NE(shrunk.data(), smooth.data());
+    EXPECT_LT(shrunk.size(), smooth.size() / 10);
+}
+
+TEST(ExrFile, BlocksThatDoNotCompressAreStoredRawAndReadBack) {
+    // Rows 0..15 (the first block) random bit patterns of finite floats: no compression shrinks
+    // them, so the block is stored raw; rows 16..39 smooth, compressed. OpenEXR's own reader
+    // (readFloatExr) must give back every bit of both.
+    const int width = 64, height = 40;
+    std::vector<float> pixels(size_t(width) * height);
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        uint32_t bits = static_cast<uint32_t>(uniform01(9, i) * 0x1.0p32);
+        if ((bits & 0x7F800000u) == 0x7F800000u) bits ^= 0x40000000u;  // not inf or NaN
+        pixels[i] = i < size_t(16 * width) ? std::bit_cast<float>(bits) : float(i % width) / width;
+    }
+    const auto path = std::filesystem::temp_directory_path() / "nenrin-exr-raw-block.exr";
+    writeFloatExr(path.string(), path.string(), width, height, {"Y"}, pixels.data(), {});
+    const size_t bytes = fileBytes(path).size();
+    const FloatExr back = readFloatExr(path.string());
+    std::filesystem::remove(path);
+    // The raw block is all of its 4 KB; the smooth rows add little.
+    EXPECT_GT(bytes, size_t(16 * width * 4));
+    EXPECT_LT(bytes, size_t(16 * width * 4) + 2000);
+    ASSERT_EQ(back.pixels.size(), pixels.size());
+    for (size_t i = 0; i < pixels.size(); ++i)
+        ASSERT_EQ(std::bit_cast<uint32_t>(back.pixels[i]), std::bit_cast<uint32_t>(pixels[i])) << i;
 }
 
 }  // namespace
