@@ -64,17 +64,12 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
 }
 
 void traceShadowRays(const RayScene& rays, std::span<ShadowRay> shadows) {
-    Ray packet[16];
-    double tMax[16];
-    bool blocked[16];
+    constexpr size_t kStride = sizeof(ShadowRay);
     for (size_t base = 0; base < shadows.size(); base += 16) {
         int count = static_cast<int>(std::min<size_t>(16, shadows.size() - base));
-        for (int k = 0; k < count; ++k) {
-            packet[k] = shadows[base + k].ray;
-            tMax[k] = shadows[base + k].tMax;
-        }
-        rays.occluded16(packet, tMax, count, blocked);
-        for (int k = 0; k < count; ++k) shadows[base + k].blocked = blocked[k];
+        ShadowRay& first = shadows[base];
+        rays.occluded16({&first.ray, kStride}, {&first.tMax, kStride}, count,
+                        {&first.blocked, kStride});
     }
 }
 

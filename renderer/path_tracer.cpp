@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -237,13 +238,10 @@ void TileRenderer::startCameraPaths(uint32_t k0, uint32_t pixelBegin, uint32_t p
 
 /// The camera rays, in packets of 16.
 void TileRenderer::traceCamera() {
-    Ray rays[16];
-    SurfaceHit hits[16];
     for (size_t base = 0; base < paths_.size(); base += 16) {
         int count = static_cast<int>(std::min<size_t>(16, paths_.size() - base));
-        for (int k = 0; k < count; ++k) rays[k] = paths_[base + k].ray;
-        rays_.intersect16(rays, count, hits);
-        for (int k = 0; k < count; ++k) paths_[base + k].hit = hits[k];
+        PathState& first = paths_[base];
+        rays_.intersect16({&first.ray, sizeof(PathState)}, count, {&first.hit, sizeof(PathState)});
     }
     rayCount_ += paths_.size();
 }
@@ -351,17 +349,20 @@ void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
                            !(path.glue && path.glueCover > 0);
     const WoodHits::Evaluation evaluation = woodHits_.evaluation(index);
     const SurfaceShading* kept = shareable ? shared_.find(evaluation, ng) : nullptr;
-    const SurfaceShading surface =
-        kept ? *kept
-             : materialBsdf(material, {.hit = &path.hit,
-                                       .wo = wo,
-                                       .ns = ns,
-                                       .wood = wood,
-                                       .boardTint = path.boardTint,
-                                       .glue = path.glue,
-                                       .glueCover = path.glueCover,
-                                       .minRoughness = path.minRoughness});
-    if (shareable && !kept) shared_.keep(evaluation, ng, surface, scene_.lights.size());
+    // Not copied when kept: the state is some 300 bytes, and most camera samples share it.
+    std::optional<SurfaceShading> own;
+    if (!kept) {
+        own = materialBsdf(material, {.hit = &path.hit,
+                                      .wo = wo,
+                                      .ns = ns,
+                                      .wood = wood,
+                                      .boardTint = path.boardTint,
+                                      .glue = path.glue,
+                                      .glueCover = path.glueCover,
+                                      .minRoughness = path.minRoughness});
+        if (shareable) shared_.keep(evaluation, ng, *own, scene_.lights.size());
+    }
+    const SurfaceShading& surface = kept ? *kept : *own;
     const Vec3 woLocal = surface.frame.toLocal(wo);
 
     if (camera) {

@@ -13,21 +13,26 @@ namespace nenrin {
 
 namespace {
 
+[[noreturn]] [[gnu::cold]] void rayOutOfRange(const Ray& ray) {
+    throw std::domain_error(fmt::format(
+        "renderer: a ray from ({:g}, {:g}, {:g}) along ({:g}, {:g}, {:g}) is outside what "
+        "Embree can trace (a camera, light or object placed absurdly far?)",
+        ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y,
+        ray.direction.z));
+}
+
 /// Embree asserts (and aborts the process) on a ray it deems invalid: a coordinate beyond
 /// ~1.8e18 or not finite, or a negative or NaN extent. Scene inputs are bounded where they are
-/// read; this keeps a missed case an error instead of an abort.
-void checkRay(const Ray& ray, double tMax) {
+/// read; this keeps a missed case an error instead of an abort. Every ray is checked, so the
+/// tests are combined with & (no branch each; a NaN fails every comparison).
+inline void checkRay(const Ray& ray, double tMax) {
     constexpr double kLimit = 1e18;
-    const double values[6] = {ray.origin.x,    ray.origin.y,    ray.origin.z,
-                              ray.direction.x, ray.direction.y, ray.direction.z};
-    bool ok = tMax >= 0;  // false for NaN too
-    for (double v : values) ok = ok && std::abs(v) < kLimit;
-    if (!ok)
-        throw std::domain_error(fmt::format(
-            "renderer: a ray from ({:g}, {:g}, {:g}) along ({:g}, {:g}, {:g}) is outside what "
-            "Embree can trace (a camera, light or object placed absurdly far?)",
-            ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y,
-            ray.direction.z));
+    const bool ok = (tMax >= 0) & (std::abs(ray.origin.x) < kLimit) &
+                    (std::abs(ray.origin.y) < kLimit) & (std::abs(ray.origin.z) < kLimit) &
+                    (std::abs(ray.direction.x) < kLimit) & (std::abs(ray.direction.y) < kLimit) &
+                    (std::abs(ray.direction.z) < kLimit);
+    if (!ok) [[unlikely]]
+        rayOutOfRange(ray);
 }
 
 /// What a geometry id stands for, and what shading needs of it.
@@ -66,14 +71,21 @@ void boxTriangles(const Vec3& size, std::vector<Vec3>& positions,
     }
 }
 
-SurfaceHit toHit(const RTCRay& ray, const RTCHit& h, const std::vector<GeometryRecord>& records) {
-    SurfaceHit s;
-    if (h.geomID == RTC_INVALID_GEOMETRY_ID) return s;
+/// What Embree found for one ray: the ray (as Embree took it, in floats) and its hit.
+struct EmbreeHit {
+    float org[3], dir[3], tfar;
+    float ng[3], u, v;
+    unsigned primID, geomID;
+};
+
+/// Fills `s` (reset first) with the hit `h`.
+void toHit(const EmbreeHit& h, const std::vector<GeometryRecord>& records, SurfaceHit& s) {
+    s = SurfaceHit{};
+    if (h.geomID == RTC_INVALID_GEOMETRY_ID) return;
     s.hit = true;
-    s.distance = ray.tfar;
-    s.position =
-        Vec3{ray.org_x, ray.org_y, ray.org_z} + Vec3{ray.dir_x, ray.dir_y, ray.dir_z} * ray.tfar;
-    s.geometricNormal = normalize(Vec3{h.Ng_x, h.Ng_y, h.Ng_z});
+    s.distance = h.tfar;
+    s.position = Vec3{h.org[0], h.org[1], h.org[2]} + Vec3{h.dir[0], h.dir[1], h.dir[2]} * h.tfar;
+    s.geometricNormal = normalize(Vec3{h.ng[0], h.ng[1], h.ng[2]});
     s.shadingNormal = s.geometricNormal;
     const GeometryRecord& g = records[h.geomID];
     s.isLight = g.isLight;
@@ -90,7 +102,6 @@ SurfaceHit toHit(const RTCRay& ray, const RTCHit& h, const std::vector<GeometryR
         s.dpdu = g.uvDerivatives[h.primID][0];
         s.dpdv = g.uvDerivatives[h.primID][1];
     }
-    return s;
 }
 
 }  // namespace
@@ -187,10 +198,20 @@ SurfaceHit RayScene::intersect(const Ray& ray) const {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     checkRay(ray, 0);
     rtcIntersect1(impl_->scene, &context, &rh);
-    return toHit(rh.ray, rh.hit, impl_->records);
+    const EmbreeHit h{{rh.ray.org_x, rh.ray.org_y, rh.ray.org_z},
+                      {rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z},
+                      rh.ray.tfar,
+                      {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z},
+                      rh.hit.u,
+                      rh.hit.v,
+                      rh.hit.primID,
+                      rh.hit.geomID};
+    SurfaceHit s;
+    toHit(h, impl_->records, s);
+    return s;
 }
 
-void RayScene::intersect16(const Ray* rays, int count, SurfaceHit* hits) const {
+void RayScene::intersect16(Strided<const Ray> rays, int count, Strided<SurfaceHit> hits) const {
     alignas(64) int valid[16];
     alignas(64) RTCRayHit16 rh;
     for (int i = 0; i < 16; ++i) {
@@ -215,27 +236,20 @@ void RayScene::intersect16(const Ray* rays, int count, SurfaceHit* hits) const {
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect16(valid, impl_->scene, &context, &rh);
     for (int i = 0; i < count; ++i) {
-        RTCRay ray{};
-        ray.org_x = rh.ray.org_x[i];
-        ray.org_y = rh.ray.org_y[i];
-        ray.org_z = rh.ray.org_z[i];
-        ray.dir_x = rh.ray.dir_x[i];
-        ray.dir_y = rh.ray.dir_y[i];
-        ray.dir_z = rh.ray.dir_z[i];
-        ray.tfar = rh.ray.tfar[i];
-        RTCHit hit{};
-        hit.Ng_x = rh.hit.Ng_x[i];
-        hit.Ng_y = rh.hit.Ng_y[i];
-        hit.Ng_z = rh.hit.Ng_z[i];
-        hit.u = rh.hit.u[i];
-        hit.v = rh.hit.v[i];
-        hit.primID = rh.hit.primID[i];
-        hit.geomID = rh.hit.geomID[i];
-        hits[i] = toHit(ray, hit, impl_->records);
+        const EmbreeHit h{{rh.ray.org_x[i], rh.ray.org_y[i], rh.ray.org_z[i]},
+                          {rh.ray.dir_x[i], rh.ray.dir_y[i], rh.ray.dir_z[i]},
+                          rh.ray.tfar[i],
+                          {rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]},
+                          rh.hit.u[i],
+                          rh.hit.v[i],
+                          rh.hit.primID[i],
+                          rh.hit.geomID[i]};
+        toHit(h, impl_->records, hits[i]);
     }
 }
 
-void RayScene::occluded16(const Ray* rays, const double* tMax, int count, bool* occluded) const {
+void RayScene::occluded16(Strided<const Ray> rays, Strided<const double> tMax, int count,
+                          Strided<bool> occluded) const {
     alignas(64) int valid[16];
     alignas(64) RTCRay16 r;
     for (int i = 0; i < 16; ++i) {

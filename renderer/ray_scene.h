@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 
 #include "renderer/camera.h"
 #include "renderer/scene.h"
@@ -32,6 +33,22 @@ inline Vec3 offsetOrigin(const Vec3& p, const Vec3& ng, const Vec3& towards) {
     return p + ng * (dot(ng, towards) > 0 ? scale : -scale);
 }
 
+/// Elements `stride` bytes apart: one field of each element of an array of structs, read or
+/// written where it lies (packets of rays go to and from paths without copies).
+template <class T>
+class Strided {
+public:
+    Strided(T* first, size_t stride = sizeof(T)) : first_(first), stride_(stride) {}
+    T& operator[](size_t i) const {
+        using Byte = std::conditional_t<std::is_const_v<T>, const char, char>;
+        return *reinterpret_cast<T*>(reinterpret_cast<Byte*>(first_) + i * stride_);
+    }
+
+private:
+    T* first_;
+    size_t stride_;
+};
+
 class RayScene {
 public:
     explicit RayScene(const Scene& scene);
@@ -41,12 +58,13 @@ public:
 
     SurfaceHit intersect(const Ray& ray) const;
     /// Up to 16 coherent rays at once (Embree packets: ~3x faster for camera rays).
-    void intersect16(const Ray* rays, int count, SurfaceHit* hits) const;
+    void intersect16(Strided<const Ray> rays, int count, Strided<SurfaceHit> hits) const;
     /// True if anything lies on the ray between 0 and tMax.
     bool occluded(const Ray& ray, double tMax) const;
     /// Up to 16 shadow rays at once (Embree packets; shadow rays of neighbouring samples
     /// towards one light are coherent). occluded[i] answers ray i.
-    void occluded16(const Ray* rays, const double* tMax, int count, bool* occluded) const;
+    void occluded16(Strided<const Ray> rays, Strided<const double> tMax, int count,
+                    Strided<bool> occluded) const;
 
 private:
     struct Impl;
