@@ -6,6 +6,13 @@
 
 namespace nenrin {
 
+namespace {
+
+/// A shadow ray's extent towards a light at infinity.
+constexpr double kDistantReach = 1e30;
+
+}  // namespace
+
 DirectLight::DirectLight(const Scene& scene)
     : scene_(scene),
       env_(environmentLight(scene)),
@@ -29,6 +36,23 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
         const size_t li = k < everyVertex.size() ? everyVertex[k] : picked;
         const double selected = k < everyVertex.size() ? 1 : pickedProbability;
         const Light& light = scene_.lights[li];
+        // Shared only towards distant lights, whose direction is the same for every sample;
+        // other lights are sampled per sample, and their pdf goes with their own f.
+        const bool shareLight = !distantValues.empty() && light.type == LightType::Distant;
+        if (shareLight && selected == 1 && distantValues[li].lit) {
+            const BsdfValue& value = distantValues[li];
+            const Rgb contribution = multiply(v.throughput, value.litF);
+            const Rgb diffuse = v.camera ? multiply(v.throughput, value.litDiffuse)
+                                         : multiply(v.diffuseShare, contribution);
+            out.push_back({path,
+                           {offsetOrigin(v.position, v.ng, light.direction), light.direction},
+                           kDistantReach,
+                           contribution,
+                           diffuse,
+                           false,
+                           v.camera});
+            continue;
+        }
         LightSample ls;
         // Delta lights take no sample: their numbers are not drawn (a hash each, per sample).
         const bool delta = light.type == LightType::Distant || light.type == LightType::Point;
@@ -36,9 +60,6 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
             delta ? std::pair<double, double>{0, 0} : random.pair(dimension::lightPair(k));
         if (!sampleLight(light, v.position, u1, u2, ls) || dot(ls.direction, v.ng) <= 0) continue;
         Vec3 wiLocal = frame.toLocal(ls.direction);
-        // Shared only towards distant lights, whose direction is the same for every sample;
-        // other lights are sampled per sample, and their pdf goes with their own f.
-        const bool shareLight = !distantValues.empty() && light.type == LightType::Distant;
         BsdfValue value;
         if (shareLight && distantValues[li].f.r >= 0) {
             value = distantValues[li];
@@ -49,16 +70,22 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
         const Rgb& f = value.f;
         if (isBlack(f) || isBlack(ls.radiance)) continue;
         Ray shadow{offsetOrigin(v.position, v.ng, ls.direction), ls.direction};
-        double tMax = std::isinf(ls.distance) ? 1e30 : ls.distance * (1 - 1e-4);
+        double tMax = std::isinf(ls.distance) ? kDistantReach : ls.distance * (1 - 1e-4);
         // MIS only if BSDF sampling can also find this light (not at the last vertex).
         const double pdf = ls.pdf * selected;
         double weight =
             ls.delta || !v.continues ? 1 : powerHeuristic(pdf, bsdf.pdf(v.woLocal, wiLocal));
         const double scale = wiLocal.z * weight / pdf;
-        const Rgb contribution = multiply(v.throughput, multiply(f, ls.radiance) * scale);
+        const Rgb litF = multiply(f, ls.radiance) * scale;
+        const Rgb litDiffuse = multiply(value.diffuse, ls.radiance) * scale;
+        if (shareLight && selected == 1) {
+            distantValues[li].lit = true;
+            distantValues[li].litF = litF;
+            distantValues[li].litDiffuse = litDiffuse;
+        }
+        const Rgb contribution = multiply(v.throughput, litF);
         const Rgb diffuse =
-            v.camera ? multiply(v.throughput, multiply(value.diffuse, ls.radiance) * scale)
-                     : multiply(v.diffuseShare, contribution);
+            v.camera ? multiply(v.throughput, litDiffuse) : multiply(v.diffuseShare, contribution);
         out.push_back({path, shadow, tMax, contribution, diffuse, false, v.camera});
     }
 }

@@ -55,6 +55,11 @@ struct LitVertex {
 /// The BSDF's value towards a light, and its diffuse part (SurfaceBsdf::evaluate).
 struct BsdfValue {
     Rgb f, diffuse;
+    /// Once a sample of a distant light taken with odds 1 has lit the vertex: f and diffuse
+    /// times the light's radiance and cos theta_i (what each sample's throughput multiplies),
+    /// so the samples that share the vertex only trace their shadow rays.
+    bool lit = false;
+    Rgb litF, litDiffuse;
 };
 
 class DirectLight {

@@ -1,9 +1,11 @@
 // Renderer tests against closed forms and invariants: a Lambert plane under a distant light
-// and under a constant sky, white furnaces, bitwise determinism across thread counts, and the
-// cut plan's boards (every corner inside the felled log; same seed same boards).
+// and under a constant sky, wood under two suns as the sum of each alone, white furnaces, bitwise
+// determinism across thread counts, and the cut plan's boards (every corner inside the felled log;
+// same seed same boards).
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -63,6 +65,28 @@ TEST(Render, LambertPlaneUnderDistantLightMatchesClosedForm) {
     double expected = albedo * E * std::cos(theta) / std::numbers::pi;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(meanChannel(film, c), expected, 1e-5 * expected);
     for (float a : film.alpha) EXPECT_EQ(a, 1.f);
+}
+
+TEST(Render, WoodUnderTwoSunsIsTheSumOfEachSunAlone) {
+    // Camera samples of a pixel share the wood's shading and, towards each sun, its lit value
+    // (DirectLight): with two suns every sample must still add each sun's own light. Direct
+    // light only, so each pixel is the sum of the two one-sun renders up to rounding.
+    const std::string sunA =
+        R"({"type": "distant", "direction": [0.3, 0.8, 0.2], "irradiance": 2})";
+    const std::string sunB =
+        R"({"type": "distant", "direction": [-0.5, 0.6, -0.1], "irradiance": 1.5})";
+    auto film = [&](const std::string& lights) {
+        return render(*sceneFromText("suns", planeScene(lights, woodMaterial("m"), 8, 1)));
+    };
+    const Film both = film(sunA + ", " + sunB), a = film(sunA), b = film(sunB);
+    double largest = 0;
+    for (size_t i = 0; i < both.rgb.size(); ++i) {
+        const double sum = double(a.rgb[i]) + double(b.rgb[i]);
+        EXPECT_NEAR(both.rgb[i], sum, 1e-5 * sum + 1e-7) << i;
+        largest = std::max(largest, sum);
+    }
+    EXPECT_GT(largest, 0.05);  // the suns do light the wood
+    EXPECT_NE(a.rgb, b.rgb);
 }
 
 TEST(Render, LambertPlaneUnderConstantSkyMatchesClosedForm) {
