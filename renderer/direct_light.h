@@ -70,7 +70,8 @@ public:
     /// Appends the shadow rays of next-event estimation at `v` (path `path`) to `out`, in light
     /// order; none if wo is below the shading surface. `distantValues`, one per scene light:
     /// the BSDF's values towards the distant ones, shared by samples with the same BSDF and (up
-    /// to a pixel's spread) the same wo; f.r < 0: not known yet. Empty: nothing shared.
+    /// to a pixel's spread) the same wo; f.r < 0: not known yet; once `lit`, a later sample
+    /// takes the lit value and only adds its own shadow ray. Empty: nothing shared.
     void sample(const LitVertex& v, const BounceRandom& random, std::span<BsdfValue> distantValues,
                 uint32_t path, std::vector<ShadowRay>& out);
 

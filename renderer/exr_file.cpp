@@ -37,16 +37,22 @@ static_assert(std::endian::native == std::endian::little,
               "EXR samples are little-endian and are packed here as they lie in memory");
 
 /// The file an EXR is written to through OpenEXRCore, and the first error met writing it.
+/// While it exists it is the calling thread's current stream: OpenEXRCore reports errors to a
+/// callback while it holds the context's lock, so the callback cannot ask the context for its
+/// user data (exr_get_user_data takes the same lock: a deadlock).
 class ExrStream {
 public:
     ExrStream(const std::string& writePath, const std::string& finalPath)
         : finalPath_(finalPath),
-          fd_(::open(writePath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)) {
+          fd_(::open(writePath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666)),
+          outer_(current_) {
         if (fd_ < 0)
             throw InputError(finalPath, "output",
                              std::string("cannot open it for writing: ") + std::strerror(errno));
+        current_ = this;
     }
     ~ExrStream() {
+        current_ = outer_;
         if (fd_ >= 0) ::close(fd_);
     }
     ExrStream(const ExrStream&) = delete;
@@ -57,7 +63,7 @@ public:
         if (result == EXR_ERR_SUCCESS) return;
         throw InputError(
             finalPath_, "output",
-            "could not write the EXR (disk full?): " +
+            "could not write the EXR: " +
                 (error_.empty() ? std::string(exr_get_default_error_message(result)) : error_));
     }
     /// Closes the file; a failure (a full disk on some file systems) throws InputError.
@@ -65,38 +71,48 @@ public:
         const int fd = fd_;
         fd_ = -1;
         if (::close(fd) != 0) {
-            error_ = std::strerror(errno);
+            note(std::strerror(errno));
             check(EXR_ERR_WRITE_IO);
         }
     }
 
     static int64_t writeAt(exr_const_context_t, void* user, const void* buffer, uint64_t size,
-                           uint64_t offset, exr_stream_error_func_ptr_t) {
+                           uint64_t offset, exr_stream_error_func_ptr_t) noexcept {
         auto* self = static_cast<ExrStream*>(user);
         const char* bytes = static_cast<const char*>(buffer);
         for (uint64_t done = 0; done < size;) {
             const ssize_t n = ::pwrite(self->fd_, bytes + done, size - done, off_t(offset + done));
             if (n < 0 && errno == EINTR) continue;
             if (n <= 0) {
-                if (self->error_.empty()) self->error_ = std::strerror(n < 0 ? errno : ENOSPC);
+                self->note(std::strerror(n < 0 ? errno : ENOSPC));
                 return -1;
             }
             done += uint64_t(n);
         }
         return int64_t(size);
     }
-    static void onError(exr_const_context_t context, exr_result_t, const char* message) {
-        void* user = nullptr;
-        if (exr_get_user_data(context, &user) != EXR_ERR_SUCCESS || !user) return;
-        auto* self = static_cast<ExrStream*>(user);
-        if (self->error_.empty()) self->error_ = message;
+    static void onError(exr_const_context_t, exr_result_t, const char* message) noexcept {
+        if (current_) current_->note(message);
     }
 
 private:
+    /// Keeps the first error's text (called from OpenEXRCore's C frames: must not throw).
+    void note(const char* message) noexcept {
+        if (!error_.empty() || !message) return;
+        try {
+            error_ = message;
+        } catch (...) {
+        }
+    }
+
+    static thread_local ExrStream* current_;
     std::string finalPath_;
     int fd_;
+    ExrStream* outer_;
     std::string error_;
 };
+
+thread_local ExrStream* ExrStream::current_ = nullptr;
 
 /// One thread's buffers for the blocks of an EXR: rows packed as OpenEXR lays them out, then
 /// compressed.
@@ -158,6 +174,9 @@ void writeFloatExrChannels(const std::string& finalPath, const std::string& writ
             if (context) exr_finish(&context);
         }
     } finish{context};
+    // Names over 31 characters (a long metadata key) need the long-name flag, as OpenEXR's
+    // C++ writer sets it by itself.
+    stream.check(exr_set_longname_support(context, 1));
     int part = 0;
     stream.check(exr_add_part(context, "", EXR_STORAGE_SCANLINE, &part));
     const exr_attr_box2i_t display{{0, 0}, {width - 1, height - 1}};
@@ -189,8 +208,10 @@ void writeFloatExrChannels(const std::string& finalPath, const std::string& writ
     stream.check(exr_get_scanlines_per_chunk(context, part, &rowsPerBlock));
     const int blocks = (end - band.begin + rowsPerBlock - 1) / rowsPerBlock;
     // Blocks are compressed in batches (side by side with threads > 1), then written in order:
-    // the bytes do not depend on the thread count.
-    const int batch = std::max(1, threads) * 8;
+    // the bytes do not depend on the thread count. A batch holds at most ~64 MB of blocks.
+    const size_t blockBytes = size_t(rowsPerBlock) * width * channels.size() * sizeof(float);
+    const int batch = static_cast<int>(std::clamp<size_t>(
+        (size_t(64) << 20) / std::max<size_t>(blockBytes, 1), 1, size_t(std::max(1, threads)) * 8));
     std::vector<std::vector<uint8_t>> stored(static_cast<size_t>(batch));
     tbb::enumerable_thread_specific<BlockPacker> packers;
     tbb::task_arena arena(std::max(1, threads));

@@ -60,9 +60,9 @@ inline double valueNoiseCorner(uint64_t seed, long long a, long long b, long lon
 }
 
 /// smoothLattice of valueNoiseCorner, bit for bit, with the hashing the eight corners share
-/// done once: cellRandom's hash is mix(mix(s ^ mix(key(a, b))) ^ mix(c)), and the corners have
-/// four keys and two c's, so 18 mixes instead of 32 (the wood's anatomy calls this ~40 times a
-/// sample).
+/// done once: cellRandom's hash is mix(mix(s ^ mix(key(a, b))) ^ mix(c)) with s = hashCombine(
+/// seed, 11), and the corners have four keys and two c's, so 20 mixes instead of 34 (the wood's
+/// anatomy calls this ~40 times a pixel).
 inline double valueNoise(uint64_t seed, double x, double y, double z) {
     const LatticeCell l = latticeCell(x, y, z);
     const uint64_t s = hashCombine(seed, 11);

@@ -15,6 +15,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderer/exr_zip.h"
@@ -120,6 +121,28 @@ TEST(ExrFile, ChannelsApartInMemoryWriteTheSameFileAsInterleaved) {
     }
     EXPECT_FALSE(std::filesystem::exists(b));
     std::filesystem::remove(a);
+}
+
+TEST(ExrFile, WhatOpenExrRejectsIsAnErrorAndLongKeysAreKept) {
+    // OpenEXRCore reports a bad header while it holds its context's lock: the error must come
+    // back as an InputError naming the file (an error callback that asked the context for its
+    // user data deadlocked here).
+    const auto path = std::filesystem::temp_directory_path() / "nenrin-exr-rejected.exr";
+    const std::vector<float> pixels(2 * 4 * 3, 0.5f);
+    for (const auto& [width, channels] :
+         {std::pair<int, std::vector<std::string>>{4, {"R", "R"}}, {0, {"R", "G"}}}) {
+        try {
+            writeFloatExr(path.string(), path.string(), width, 3, channels, pixels.data(), {});
+            ADD_FAILURE() << "no error for width " << width;
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+        }
+    }
+    // A metadata name over 31 characters needs OpenEXR's long-name flag.
+    const std::string key(40, 'k');
+    writeFloatExr(path.string(), path.string(), 4, 3, {"R", "G"}, pixels.data(), {{key, "v"}});
+    EXPECT_EQ(readFloatExr(path.string()).metadata.at(key), "v");
+    std::filesystem::remove(path);
 }
 
 TEST(ExrZip, KeepsWhatDoesNotShrinkAndShrinksWhatRepeats) {
