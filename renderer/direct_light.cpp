@@ -32,6 +32,21 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
             selection_.select(v.position, v.ng, random.at(dimension::lightPick(everyVertex.size())),
                               pickedProbability, cdf_);
     const size_t sampled = everyVertex.size() + (picked < scene_.lights.size());
+    // One light's sample: its shadow ray towards `direction`, carrying the throughput times
+    // f x radiance x cos / pdf (litF) and its diffuse part.
+    auto addShadowRay = [&](const Vec3& direction, double tMax, const Rgb& litF,
+                            const Rgb& litDiffuse) {
+        const Rgb contribution = multiply(v.throughput, litF);
+        const Rgb diffuse =
+            v.camera ? multiply(v.throughput, litDiffuse) : multiply(v.diffuseShare, contribution);
+        out.push_back({path,
+                       {offsetOrigin(v.position, v.ng, direction), direction},
+                       tMax,
+                       contribution,
+                       diffuse,
+                       false,
+                       v.camera});
+    };
     for (size_t k = 0; k < sampled; ++k) {
         const size_t li = k < everyVertex.size() ? everyVertex[k] : picked;
         const double selected = k < everyVertex.size() ? 1 : pickedProbability;
@@ -40,17 +55,8 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
         // other lights are sampled per sample, and their pdf goes with their own f.
         const bool shareLight = !distantValues.empty() && light.type == LightType::Distant;
         if (shareLight && selected == 1 && distantValues[li].lit) {
-            const BsdfValue& value = distantValues[li];
-            const Rgb contribution = multiply(v.throughput, value.litF);
-            const Rgb diffuse = v.camera ? multiply(v.throughput, value.litDiffuse)
-                                         : multiply(v.diffuseShare, contribution);
-            out.push_back({path,
-                           {offsetOrigin(v.position, v.ng, light.direction), light.direction},
-                           kDistantReach,
-                           contribution,
-                           diffuse,
-                           false,
-                           v.camera});
+            const BsdfValue& kept = distantValues[li];
+            addShadowRay(light.direction, kDistantReach, kept.litF, kept.litDiffuse);
             continue;
         }
         LightSample ls;
@@ -69,8 +75,7 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
         }
         const Rgb& f = value.f;
         if (isBlack(f) || isBlack(ls.radiance)) continue;
-        Ray shadow{offsetOrigin(v.position, v.ng, ls.direction), ls.direction};
-        double tMax = std::isinf(ls.distance) ? kDistantReach : ls.distance * (1 - 1e-4);
+        const double tMax = std::isinf(ls.distance) ? kDistantReach : ls.distance * (1 - 1e-4);
         // MIS only if BSDF sampling can also find this light (not at the last vertex).
         const double pdf = ls.pdf * selected;
         double weight =
@@ -83,10 +88,7 @@ void DirectLight::sample(const LitVertex& v, const BounceRandom& random,
             distantValues[li].litF = litF;
             distantValues[li].litDiffuse = litDiffuse;
         }
-        const Rgb contribution = multiply(v.throughput, litF);
-        const Rgb diffuse =
-            v.camera ? multiply(v.throughput, litDiffuse) : multiply(v.diffuseShare, contribution);
-        out.push_back({path, shadow, tMax, contribution, diffuse, false, v.camera});
+        addShadowRay(ls.direction, tMax, litF, litDiffuse);
     }
 }
 
