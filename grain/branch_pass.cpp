@@ -10,6 +10,7 @@
 #include "grain/field_passes.h"
 #include "grain/growth_field.h"
 #include "grain/growth_terms.h"
+#include "grain/path_time.h"
 #include "grain/reach_lanes.h"
 
 namespace nenrin {

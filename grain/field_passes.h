@@ -10,6 +10,7 @@
 
 #include "grain/field_bounds.h"
 #include "grain/field_segment.h"
+#include "grain/point_box.h"
 #include "grain/point_quarters.h"
 #include "grain/segment_batch.h"
 #include "grain/segment_lanes.h"
@@ -109,7 +110,8 @@ struct CullBuffers {
 
 /// GrowthScratch's innards: the buffers of one evaluateBatch call, reused by the next.
 struct GrowthBuffers {
-    std::vector<Vec3> points;  ///< the batch's points, swayed
+    std::vector<Vec3> points;          ///< the batch's points, swayed
+    std::vector<PointBox> chunkBoxes;  ///< around each chunk of them
     TrunkBuffers trunk;
     std::vector<uint32_t> candidateChains;  ///< chains that may matter for the batch, sorted
     std::vector<uint32_t> groupChains;      ///< those that may matter for a group of chunks

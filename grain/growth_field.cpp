@@ -144,8 +144,13 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
     GrowthBuffers& buffers = scratch.buffers();
     const std::span<const Vec3> points =
         swayPoints(input, stencil, sway_, params_.wander, params_.warp, buffers.points);
-    const PointBox batch = boxOf(points);
-    const double maxTrunkTime = evaluateTrunk(points, batch, out, buffers.trunk);
+    // Each chunk's box, once: the batch's and each group's are made of them.
+    std::vector<PointBox>& chunkBoxes = buffers.chunkBoxes;
+    chunkBoxes.resize((n + kChunk - 1) / kChunk);
+    for (size_t c = 0; c < chunkBoxes.size(); ++c)
+        chunkBoxes[c] = boxOf(points.subspan(c * kChunk, std::min(kChunk, n - c * kChunk)));
+    const PointBox batch = boxOf(std::span<const PointBox>(chunkBoxes));
+    const double maxTrunkTime = evaluateTrunk(points, batch, chunkBoxes, out, buffers.trunk);
     if (index_->branches().size() == 0) return;
 
     nearbyChains(batch, maxTrunkTime, buffers.candidateChains);
@@ -158,13 +163,15 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
         std::span<const uint32_t> groupChains = chains;
         if (n > kGroup && chains.size() > kGroupCullAbove)
             groupChains =
-                cullChains(chains, boxOf(points.subspan(g0, g1 - g0)),
+                cullChains(chains,
+                           boxOf(std::span<const PointBox>(chunkBoxes)
+                                     .subspan(g0 / kChunk, (g1 - g0 + kChunk - 1) / kChunk)),
                            largestTrunkTime(out.subspan(g0, g1 - g0)), buffers.groupChains);
         for (size_t c0 = g0; c0 < g1; c0 += kChunk) {
             const size_t c1 = std::min(g1, c0 + kChunk);
             const std::span<const Vec3> chunkPoints = points.subspan(c0, c1 - c0);
             const std::span<GrowthSample> chunkOut = out.subspan(c0, c1 - c0);
-            const PointBox chunk = boxOf(chunkPoints);
+            const PointBox& chunk = chunkBoxes[c0 / kChunk];
             buffers.quarters.reset(chunkPoints, chunk.lo, chunk.hi);
             prepareTileChains(groupChains, chunk, largestTrunkTime(chunkOut), buffers.quarters,
                               buffers.tileChains, buffers.cull);

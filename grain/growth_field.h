@@ -118,10 +118,15 @@ public:
     PathTime chainPathTime(uint32_t segment, const Vec3& p) const;
 
 private:
-    /// The same, with P's projection onto the segment (project()) already at hand.
-    PathTime chainPathTime(uint32_t segment, const Vec3& p, const SegmentProjection& proj) const;
-    // One path (path_time.cpp).
-    PathTime segmentPathTime(uint32_t segment, const Vec3& p, double t) const;
+    /// The same, with P's projection onto the segment (project()) already at hand (inline,
+    /// grain/path_time.h).
+    inline PathTime chainPathTime(uint32_t segment, const Vec3& p,
+                                  const SegmentProjection& proj) const;
+    /// The eq. 4 blend where P lies in a neighbour's slab too: their tRaw, -1 if not in it.
+    PathTime blendedPathTime(uint32_t segment, const Vec3& p, double tRaw, double previousT,
+                             double nextT) const;
+    // One path (inline, grain/path_time.h).
+    inline PathTime segmentPathTime(uint32_t segment, const Vec3& p, double t) const;
     /// Its thickening time Tb (eq. 3/3', 7-9, the radial jitter and the ring series) at
     /// distance `distance` = |d| from the axis point where the elongation time is Ta; with
     /// plainThickening_, distance x s.inverseSpeed.
@@ -133,9 +138,11 @@ private:
 
     // The passes of evaluateBatch after the sway, in order; each hands the next its answer.
     /// The trunk pass (trunk_pass.cpp): every point's trunk path T1 into `out` (the rest of
-    /// each sample reset); returns the largest T1. `batch`: the points' bounding box.
+    /// each sample reset); returns the largest T1. `batch`: the points' bounding box,
+    /// `chunks`: each chunk's.
     double evaluateTrunk(std::span<const Vec3> points, const PointBox& batch,
-                         std::span<GrowthSample> out, TrunkBuffers& buffers) const;
+                         std::span<const PointBox> chunks, std::span<GrowthSample> out,
+                         TrunkBuffers& buffers) const;
     // The chain culls (chain_culls.cpp): which branch chains can matter for a box of points.
     double branchSearchRadius(double trunkTime) const;
     /// Tests 1-3 of prepareTileChains for one chain: false if it cannot matter for any point

@@ -1,6 +1,8 @@
 /// The growth time of one path (eq. 1-3', 7-10) and of a chain with the joint blend of eq. 4;
 /// docs/model.md, "The growth time of one path" and "Polyline joints".
 
+#include "grain/path_time.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -27,57 +29,33 @@ double GrowthField::thickening(const FieldSegment& s, double Ta, const Vec3& d,
     return Tb;
 }
 
-GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, const Vec3& p,
-                                                   double t) const {
-    const FieldSegment& s = segments_[segmentId];
-    PathTime r;
-    r.axisPoint = s.a + s.ab * t;
-    r.axisDirection = s.axis;
-    r.Ta = elongationTime(s.birthA, s.birthDelta, t);  // eq. 2
-    Vec3 d = p - r.axisPoint;
-    r.distance = length(d);
-    r.Tb = plainThickening_ ? r.distance * s.inverseSpeed : thickening(s, r.Ta, d, r.distance);
-    r.T = r.Ta + r.Tb;
-    if (s.branch) r.T = dieback(r.T, s.deathTime, s.diebackExponent);
-    return r;
-}
-
 GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3& p) const {
     return chainPathTime(segmentId, p, project(segments_[segmentId], p));
 }
 
-GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, const Vec3& p,
-                                                 const SegmentProjection& proj) const {
+GrowthField::PathTime GrowthField::blendedPathTime(uint32_t segmentId, const Vec3& p, double tRaw,
+                                                   double previousT, double nextT) const {
+    // Eq. 4, weights = distances to the planes through the shared joints, perpendicular to
+    // each segment, over the members in chain order.
     const FieldSegment& s = segments_[segmentId];
-    bool inSlab = proj.tRaw >= 0 && proj.tRaw <= 1;
-    // Regions A/B (inside one segment's slab) and C (beyond the joint on the convex side: the
-    // clamped nearest point is the joint Q) need no blend.
-    if (!inSlab) return segmentPathTime(segmentId, p, proj.t);
-
-    // Region D: P also lies in a neighbour's slab -> eq. 4, weights = distances to the planes
-    // through the shared joints, perpendicular to each segment.
     struct Member {
         uint32_t id;
         double tRaw, length;
     };
     Member members[3];
     int count = 0;
-    auto slabMember = [&](int32_t id) -> bool {
-        if (id == kNone) return false;
-        const FieldSegment& x = segments_[static_cast<uint32_t>(id)];
-        SegmentProjection px = project(x, p);
-        if (px.tRaw < 0 || px.tRaw > 1) return false;
-        members[count++] = {static_cast<uint32_t>(id), px.tRaw, x.length};
-        return true;
-    };
-    bool hasPrevious = slabMember(s.previous);
-    members[count++] = {segmentId, proj.tRaw, s.length};
-    bool hasNext = slabMember(s.next);
-    if (!hasPrevious && !hasNext) return segmentPathTime(segmentId, p, proj.tRaw);
-
+    if (previousT >= 0) {
+        const uint32_t id = static_cast<uint32_t>(s.previous);
+        members[count++] = {id, previousT, segments_[id].length};
+    }
+    members[count++] = {segmentId, tRaw, s.length};
+    if (nextT >= 0) {
+        const uint32_t id = static_cast<uint32_t>(s.next);
+        members[count++] = {id, nextT, segments_[id].length};
+    }
     PathTime own{};
     double times[3], planeDistances[3];
-    for (int i = 0; i < count; ++i) {  // in chain order
+    for (int i = 0; i < count; ++i) {
         const Member& m = members[i];
         double w = kInf;
         if (i > 0) w = std::min(w, m.tRaw * m.length);                // joint with previous

@@ -16,6 +16,10 @@ struct PointBox {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
+    void add(const PointBox& b) {
+        lo = {std::min(lo.x, b.lo.x), std::min(lo.y, b.lo.y), std::min(lo.z, b.lo.z)};
+        hi = {std::max(hi.x, b.hi.x), std::max(hi.y, b.hi.y), std::max(hi.z, b.hi.z)};
+    }
     bool empty() const { return !(lo.x <= hi.x); }
     Vec3 centre() const { return (lo + hi) * 0.5; }
     double halfDiagonal() const { return 0.5 * length(hi - lo); }
@@ -29,6 +33,13 @@ struct PointBox {
 inline PointBox boxOf(std::span<const Vec3> points) {
     PointBox b;
     for (const Vec3& p : points) b.add(p);
+    return b;
+}
+
+/// The box around boxes (the same as around all their points: min and max are exact).
+inline PointBox boxOf(std::span<const PointBox> boxes) {
+    PointBox b;
+    for (const PointBox& x : boxes) b.add(x);
     return b;
 }
 

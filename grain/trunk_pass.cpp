@@ -8,6 +8,7 @@
 #include "grain/field_bounds.h"
 #include "grain/field_passes.h"
 #include "grain/growth_field.h"
+#include "grain/path_time.h"
 #include "grain/segment_lanes.h"
 
 namespace nenrin {
@@ -87,21 +88,22 @@ int32_t commonNearest(const NearestLanes& nearest, size_t n, std::span<const uin
     return n > 0 ? static_cast<int32_t>(kept[static_cast<size_t>(nearest.which[0])]) : kNone;
 }
 
-/// A sample with its trunk path and nothing else.
-GrowthSample trunkSample(const GrowthField::PathTime& trunk) {
-    GrowthSample g;
+/// A sample with its trunk path and nothing else, written in place (a GrowthSample is 26
+/// words: made and then copied, it cost twice the stores).
+void setTrunkSample(GrowthSample& g, const GrowthField::PathTime& trunk) {
+    g = GrowthSample{};
     g.T = g.trunkTime = trunk.T;
     g.Ta = trunk.Ta;
     g.Tb = trunk.Tb;
     g.axisPoint = trunk.axisPoint;
     g.axisDirection = trunk.axisDirection;
-    return g;
 }
 
 }  // namespace
 
 double GrowthField::evaluateTrunk(std::span<const Vec3> points, const PointBox& batch,
-                                  std::span<GrowthSample> out, TrunkBuffers& buffers) const {
+                                  std::span<const PointBox> chunks, std::span<GrowthSample> out,
+                                  TrunkBuffers& buffers) const {
     // Every point of the batch is within d0 + h of some trunk segment, so its nearest trunk
     // segment is within d0 + 2h of the centre.
     const Vec3 centre = batch.centre();
@@ -115,7 +117,7 @@ double GrowthField::evaluateTrunk(std::span<const Vec3> points, const PointBox& 
     double maxTrunkTime = 0;
     for (size_t c0 = 0; c0 < points.size(); c0 += kChunk) {
         const size_t c1 = std::min(points.size(), c0 + kChunk);
-        const PointBox chunk = boxOf(points.subspan(c0, c1 - c0));
+        const PointBox& chunk = chunks[c0 / kChunk];
         const std::span<const uint32_t> kept = keepTrunkCandidates(
             segments_, candidates, chunk, buffers.centreDistances, buffers.kept);
         const std::span<const Vec3> chunkPoints = points.subspan(c0, c1 - c0);
@@ -142,15 +144,16 @@ double GrowthField::evaluateTrunk(std::span<const Vec3> points, const PointBox& 
                 const double Tb = plainThickening_
                                       ? distance * s.inverseSpeed
                                       : thickening(s, Ta, points[i] - axisPoint, distance);
-                out[i] = trunkSample({Ta + Tb, Ta, Tb, axisPoint, s.axis, distance});
+                setTrunkSample(out[i], {Ta + Tb, Ta, Tb, axisPoint, s.axis, distance});
                 maxTrunkTime = std::max(maxTrunkTime, out[i].T);
             }
             continue;
         }
         for (size_t i = c0, k = 0; i < c1; ++i, ++k) {
             const uint32_t id = kept[static_cast<size_t>(nearest.which[k])];
-            out[i] = trunkSample(chainPathTime(
-                id, points[i], {nearest.tRaw[k], nearest.t[k], nearest.distance2[k]}));
+            setTrunkSample(out[i],
+                           chainPathTime(id, points[i],
+                                         {nearest.tRaw[k], nearest.t[k], nearest.distance2[k]}));
             maxTrunkTime = std::max(maxTrunkTime, out[i].T);
         }
     }
