@@ -64,7 +64,10 @@ public:
         wood_ = wood;
         ng_ = ng;
         surface_ = surface;
-        lightValue_.assign(lights, BsdfValue{.f = {-1, -1, -1}, .diffuse = {}});
+        lightValue_.assign(
+            lights,
+            BsdfValue{
+                .f = {-1, -1, -1}, .diffuse = {}, .lit = false, .litF = {}, .litDiffuse = {}});
     }
     /// The BSDF's value towards each light (kept for the distant ones); f.r < 0: not known yet.
     std::span<BsdfValue> lightValues() { return lightValue_; }
