@@ -6,6 +6,7 @@
 #include <cmath>
 #include <span>
 
+#include "grain/branch_lanes.h"
 #include "grain/field_bounds.h"
 #include "grain/field_passes.h"
 #include "grain/growth_field.h"
@@ -67,10 +68,11 @@ void groupByQuarter(const PointQuarters& quarters, std::span<const Vec3> points,
 
 /// The first steps of the branch pass, chain by chain over the whole chunk in vectorised
 /// loops: the cheap tests (reachTests) and, where a chain keeps at most kDirectScan segments
-/// for the whole chunk or for a quarter of it, each point's nearest of them.
-void measureChains(const ReachBounds& bounds, TileChains& chains, const PointQuarters& quarters,
-                   std::span<const Vec3> points, std::span<const GrowthSample> out,
-                   BranchBuffers& buffers) {
+/// for the whole chunk or for a quarter of it, each point's nearest of them, and with
+/// `plain` thickening the rest of each point's tests, its path and term (branchLanes).
+void measureChains(const ReachBounds& bounds, bool plain, TileChains& chains,
+                   const PointQuarters& quarters, std::span<const Vec3> points,
+                   std::span<const GrowthSample> out, BranchBuffers& buffers) {
     const size_t n = points.size(), chainCount = chains.chains.size();
     buffers.points.fill(points);
     for (size_t i = 0; i < n; ++i) buffers.trunkTimes[i] = out[i].trunkTime;
@@ -79,11 +81,20 @@ void measureChains(const ReachBounds& bounds, TileChains& chains, const PointQua
     buffers.nearestOf.assign(chainCount, {-1, -1, -1, -1});
     size_t used = 0;
     bool grouped = false;
-    // Each point's nearest of the segments [begin, end) of the kept ones, into new lanes.
-    auto measure = [&](uint32_t begin, uint32_t end, const PointLanes& at, size_t count) {
+    // Each point's nearest of the segments [begin, end) of the kept ones, into new lanes;
+    // for the whole chunk's points (`whole`) with plain thickening, chain c's term there.
+    auto measure = [&](size_t c, uint32_t begin, uint32_t end, const PointLanes& at, size_t count,
+                       bool whole) {
         if (buffers.nearest.size() <= used) buffers.nearest.resize(used + 1);
-        nearestOfSegments(bounds.segments, chains.segments.ids(begin, end), at, count,
-                          buffers.nearest[used]);
+        if (buffers.paths.size() <= used) buffers.paths.resize(used + 1);
+        const std::span<const uint32_t> ids = chains.segments.ids(begin, end);
+        nearestOfSegments(bounds.segments, ids, at, count, buffers.nearest[used]);
+        buffers.paths[used].taken = plain && whole;
+        if (buffers.paths[used].taken)
+            branchLanes(bounds,
+                        {ids, at, count, buffers.nearest[used], buffers.trunkTimes.data(),
+                         buffers.reach[c]},
+                        buffers.paths[used]);
         return static_cast<int32_t>(used++);
     };
     auto fewEnough = [](uint32_t begin, uint32_t end) {
@@ -97,7 +108,7 @@ void measureChains(const ReachBounds& bounds, TileChains& chains, const PointQua
         };
         if (same(tc.begin) && same(tc.end)) {
             if (!fewEnough(tc.begin[0], tc.end[0])) continue;
-            buffers.nearestOf[c].fill(measure(tc.begin[0], tc.end[0], buffers.points, n));
+            buffers.nearestOf[c].fill(measure(c, tc.begin[0], tc.end[0], buffers.points, n, true));
             continue;
         }
         // Split by quarter (so the chunk's quarters are known).
@@ -106,8 +117,8 @@ void measureChains(const ReachBounds& bounds, TileChains& chains, const PointQua
                 continue;
             if (!grouped) groupByQuarter(quarters, points, buffers), grouped = true;
             if (buffers.quarterCount[q] == 0) continue;
-            buffers.nearestOf[c][q] =
-                measure(tc.begin[q], tc.end[q], buffers.quarterPoints[q], buffers.quarterCount[q]);
+            buffers.nearestOf[c][q] = measure(c, tc.begin[q], tc.end[q], buffers.quarterPoints[q],
+                                              buffers.quarterCount[q], false);
         }
         buffers.byQuarter[c] = 1;
     }
@@ -188,7 +199,7 @@ void GrowthField::evaluateBranches(std::span<const Vec3> points, const PointQuar
     if (chains.chains.empty()) return;
     const ReachBounds bounds{segments_, speedBound_, params_.age.delta, params_.junction.reach};
     const size_t n = points.size(), chainCount = chains.chains.size();
-    measureChains(bounds, chains, quarters, points, out, buffers);
+    measureChains(bounds, plainThickening_, chains, quarters, points, out, buffers);
     SegmentBatch& kept = chains.segments;
     std::vector<BranchTerm>& terms = buffers.terms;
     for (size_t i = 0; i < n; ++i) {
@@ -199,8 +210,41 @@ void GrowthField::evaluateBranches(std::span<const Vec3> points, const PointQuar
         const uint8_t quarter = quarters.quarterOf(i);
         for (size_t c = 0; c < chainCount; ++c) {
             const ReachLanes& lanes = buffers.reach[c];
-            if (!lanes.passes(i)) continue;
             const TileChain& tc = chains.chains[c];
+            const int32_t index = buffers.nearestOf[c][quarter];
+            if (index >= 0 && buffers.paths[static_cast<size_t>(index)].taken) {
+                // measureChains has taken the chain at this point in lanes.
+                const size_t lane = i;
+                const BranchLanes& at = buffers.paths[static_cast<size_t>(index)];
+                const auto state = static_cast<LaneState>(at.state[lane]);
+                if (state == LaneState::kNone) continue;
+                if (state != LaneState::kScalar) {
+                    const NearestLanes& nearest = buffers.nearest[static_cast<size_t>(index)];
+                    const uint32_t segment =
+                        kept.id(tc.begin[quarter] + static_cast<uint32_t>(nearest.which[lane]));
+                    const FieldSegment& s = segments_[segment];
+                    const double sinAlpha = lanes.sinAlpha[i];
+                    double T = at.T[lane], weight = at.weight[lane];
+                    if (state == LaneState::kDieback) {
+                        T = dieback(T, s.deathTime, s.diebackExponent);
+                        weight = junctionReachWeight(T / sinAlpha, t1, bounds.reach);
+                        if (weight <= 0) continue;
+                    }
+                    terms.push_back({tc.chain,
+                                     T,
+                                     sinAlpha,
+                                     at.distance[lane],
+                                     at.dead[lane],
+                                     weight,
+                                     segment,
+                                     {at.ax[lane], at.ay[lane], at.az[lane]},
+                                     s.axis,
+                                     at.Ta[lane],
+                                     at.Tb[lane]});
+                    continue;
+                }
+            }
+            if (!lanes.passes(i)) continue;
             SegmentProjection projection{};
             Best best = measuredNearest(buffers, kept, tc, c, i, quarter, projection);
             if (best.segment == kNone)
@@ -249,8 +293,7 @@ void GrowthField::describeKnot(const BranchTerm& t, const Vec3& point, double tr
     if (edge > s.deathTime)
         edge = s.deathTime * std::pow(edge / s.deathTime, 1 / (1 + s.diebackExponent));
     g.knotDied = t.dead > 0.5;
-    PathTime path{t.time, t.Ta, t.Tb, t.axisPoint, t.axisDirection, t.distance};
-    g.knotRadius = radiusAtTime(t.segment, path, edge);
+    g.knotRadius = radiusAtTime(t.segment, t.Ta, t.Tb, t.distance, edge);
 }
 
 }  // namespace nenrin

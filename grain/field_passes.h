@@ -72,6 +72,27 @@ struct ReachLanes {
     }
 };
 
+/// What becomes of a chain at a lane's point.
+enum class LaneState : int32_t {
+    kNone = 0,     ///< no term: a test drops it, or its weight is 0
+    kTerm = 1,     ///< a term, all of it in the lanes
+    kDieback = 2,  ///< a term whose time T is past its segment's death: eq. 10 (a pow) is to
+                   ///< be applied to T, then the weight computed, by the caller
+    kScalar = 3,   ///< P lies in a neighbour's slab too (eq. 4's blend): the per-point code
+};
+
+/// One tile chain at the lanes of a NearestLanes (grain/branch_lanes.h).
+struct BranchLanes {
+    std::array<double, kLanes> state;       ///< a LaneState (a double: one lane type)
+    std::array<double, kLanes> T;           ///< path time (before dieback where kDieback)
+    std::array<double, kLanes> Ta, Tb;      ///< its elongation and thickening parts
+    std::array<double, kLanes> distance;    ///< from P to the axis point
+    std::array<double, kLanes> ax, ay, az;  ///< the axis point
+    std::array<double, kLanes> weight;      ///< junctionReachWeight (kTerm lanes)
+    std::array<double, kLanes> dead;        ///< the encased-knot share (kTerm, kDieback)
+    bool taken = false;                     ///< false: the lanes were not filled
+};
+
 /// The branch pass's buffers, for one chunk.
 struct BranchBuffers {
     PointLanes points;
@@ -89,6 +110,9 @@ struct BranchBuffers {
     /// by the point.
     std::vector<uint8_t> byQuarter;
     std::vector<NearestLanes> nearest;
+    /// Per entry of `nearest`: the chain's tests, path and term at those lanes where taken
+    /// (grain/branch_lanes.h).
+    std::vector<BranchLanes> paths;
     std::vector<BranchTerm> terms;  ///< of the current point
 };
 

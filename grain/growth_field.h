@@ -131,10 +131,12 @@ private:
     /// distance `distance` = |d| from the axis point where the elongation time is Ta; with
     /// plainThickening_, distance x s.inverseSpeed.
     double thickening(const FieldSegment& s, double Ta, const Vec3& d, double distance) const;
-    /// Radius (m) on the ray from the segment's axis through P (`path` = segmentPathTime at P)
-    /// at which its path time, before dieback, is `time`: path times scale with distance
-    /// along such a ray through the radial growth and the age warp only, both invertible.
-    double radiusAtTime(uint32_t segment, const PathTime& path, double time) const;
+    /// Radius (m) on the ray from the segment's axis through P (Ta, Tb and distance:
+    /// segmentPathTime's at P) at which its path time, before dieback, is `time`: path times
+    /// scale with distance along such a ray through the radial growth and the age warp only,
+    /// both invertible (inline, grain/path_time.h).
+    inline double radiusAtTime(uint32_t segment, double Ta, double Tb, double distance,
+                               double time) const;
 
     // The passes of evaluateBatch after the sway, in order; each hands the next its answer.
     /// The trunk pass (trunk_pass.cpp): every point's trunk path T1 into `out` (the rest of

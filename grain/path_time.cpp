@@ -70,19 +70,4 @@ GrowthField::PathTime GrowthField::blendedPathTime(uint32_t segmentId, const Vec
     return own;
 }
 
-double GrowthField::radiusAtTime(uint32_t segmentId, const PathTime& path, double time) const {
-    // The constant-speed thickening years after which a point born at Ta is reached at `time`
-    // (segmentPathTime backwards); they are proportional to the distance along the ray.
-    auto years = [&](double t) {
-        double warped = t - path.Ta;
-        if (!radialGrowth_.empty())
-            warped = (radialGrowth_.cumulative(t) - radialGrowth_.cumulative(path.Ta)) /
-                     params_.radialSpeed;
-        return warped > 0 ? ageUnwarp(warped, params_.age.delta) : 0.0;
-    };
-    const double target = years(time), here = years(path.Ta + path.Tb);
-    if (here > 1e-12 && path.distance > 0) return path.distance * (target / here);
-    return target / segments_[segmentId].inverseSpeed;  // on the axis: the nominal speed
-}
-
 }  // namespace nenrin

@@ -46,4 +46,20 @@ inline GrowthField::PathTime GrowthField::chainPathTime(uint32_t segmentId, cons
                            hasNext ? nextT : -1);
 }
 
+inline double GrowthField::radiusAtTime(uint32_t segmentId, double Ta, double Tb, double distance,
+                                        double time) const {
+    // The constant-speed thickening years after which a point born at Ta is reached at `time`
+    // (segmentPathTime backwards); they are proportional to the distance along the ray.
+    auto years = [&](double t) {
+        double warped = t - Ta;
+        if (!radialGrowth_.empty())
+            warped =
+                (radialGrowth_.cumulative(t) - radialGrowth_.cumulative(Ta)) / params_.radialSpeed;
+        return warped > 0 ? ageUnwarp(warped, params_.age.delta) : 0.0;
+    };
+    const double target = years(time), here = years(Ta + Tb);
+    if (here > 1e-12 && distance > 0) return distance * (target / here);
+    return target / segments_[segmentId].inverseSpeed;  // on the axis: the nominal speed
+}
+
 }  // namespace nenrin
