@@ -113,6 +113,11 @@ __attribute__((always_inline)) inline void laneGroup(const SegmentConstants& c,
         const Four reachable = gs * (needed - c.birthBound);
         keep &= ~(d2 >= reachable * reachable);
     }
+    const bool all = (mask[0] & mask[1] & mask[2] & mask[3]) != 0;
+    // No term in any lane: only the state is read.
+    const Mask taken = keep & mask;
+    if ((taken[0] | taken[1] | taken[2] | taken[3]) == 0)
+        return storeWhere(&out.state[g], mask, all, zero);
     // The path (grain/path_time.h: chainPathTime with no blend is segmentPathTime at t,
     // which inside the slab is tRaw).
     const Four nx = c.ax + c.bx * u, ny = c.ay + c.by * u, nz = c.az + c.bz * u;
@@ -139,7 +144,6 @@ __attribute__((always_inline)) inline void laneGroup(const SegmentConstants& c,
     if (c.mortal) smoothstep4(zero + (c.deathTime - 0.5), zero + (c.deathTime + 0.5), t1, dead);
     const Four term = weight <= 0.0 ? zero : one;
     const Four state = keep ? (blend ? zero + 3 : (dying ? zero + 2 : term)) : zero;
-    const bool all = (mask[0] & mask[1] & mask[2] & mask[3]) != 0;
     storeWhere(&out.state[g], mask, all, state);
     storeWhere(&out.T[g], mask, all, T);
     storeWhere(&out.Ta[g], mask, all, Ta);

@@ -46,8 +46,16 @@ std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, co
     swayed.resize(n);
     RingWander ringWander(wander);
     if (sway.amplitude == 0 && wander.amplitude == 0) {
-        // Neither moves a point: only their zero sums are added, as below (-0 + 0 is +0).
-        for (size_t i = 0; i < n; ++i) swayed[i] = inDomain(input[i]) + Vec3{};
+        // Neither moves a point: only their zero sums are added, as below (-0 + 0 is +0). One
+        // branch-free test of the whole batch first (NaN fails it too): usually all are inside.
+        bool inside = true;
+        for (const Vec3& p : input)
+            inside &= (std::abs(p.x) <= kFieldDomain) & (std::abs(p.y) <= kFieldDomain) &
+                      (std::abs(p.z) <= kFieldDomain);
+        if (inside)
+            for (size_t i = 0; i < n; ++i) swayed[i] = input[i] + Vec3{};
+        else
+            for (size_t i = 0; i < n; ++i) swayed[i] = inDomain(input[i]) + Vec3{};
     } else if (stencil <= 1 || n % stencil != 0) {
         for (size_t i = 0; i < n; ++i) {
             const Vec3 p = inDomain(input[i]);

@@ -44,7 +44,9 @@ inline const Four& load(const double* p, Four& v) {
 inline void store(double* p, const Four& v) { std::memcpy(p, &v, sizeof v); }
 
 /// One segment's project() at lanes [0, n rounded up to 4) (PointLanes pads them), and the
-/// running nearest, lane by lane as the scalar code computes it.
+/// running nearest, lane by lane as the scalar code computes it. `kFirst`: the first segment,
+/// measured against a nearest at infinity (not read from `out`: the lanes are not set yet).
+template <bool kFirst>
 inline void nearerOfSegment(const FieldSegment& s, double which, size_t n, const PointLanes& p,
                             NearestLanes& out) {
     const double ax = s.a.x, ay = s.a.y, az = s.a.z;
@@ -61,6 +63,15 @@ inline void nearerOfSegment(const FieldSegment& s, double which, size_t n, const
         const Four t = one < lower ? one : lower;
         const Four dx = x - (ax + bx * t), dy = y - (ay + by * t), dz = z - (az + bz * t);
         const Four d2 = dx * dx + dy * dy + dz * dz;
+        if constexpr (kFirst) {
+            const Four infinity = zero + std::numeric_limits<double>::infinity();
+            const auto nearer = d2 < infinity;
+            store(&out.distance2[i], nearer ? d2 : infinity);
+            store(&out.tRaw[i], nearer ? tRaw : zero);
+            store(&out.t[i], nearer ? t : zero);
+            store(&out.which[i], nearer ? index : zero);
+            continue;
+        }
         const auto nearer = d2 < load(&out.distance2[i], best);
         store(&out.distance2[i], nearer ? d2 : best);
         store(&out.tRaw[i], nearer ? tRaw : load(&out.tRaw[i], oldTRaw));
@@ -75,12 +86,16 @@ NENRIN_AVX2_CLONES void nearestOfSegments(std::span<const FieldSegment> segments
                                           std::span<const uint32_t> ids, const PointLanes& points,
                                           size_t n, NearestLanes& out) {
     const size_t lanes = (n + 3) / 4 * 4;
-    for (size_t i = 0; i < lanes; ++i) {
-        out.distance2[i] = std::numeric_limits<double>::infinity();
-        out.tRaw[i] = out.t[i] = out.which[i] = 0;
+    if (ids.empty()) {
+        for (size_t i = 0; i < lanes; ++i) {
+            out.distance2[i] = std::numeric_limits<double>::infinity();
+            out.tRaw[i] = out.t[i] = out.which[i] = 0;
+        }
+        return;
     }
-    for (size_t k = 0; k < ids.size(); ++k)
-        nearerOfSegment(segments[ids[k]], double(k), lanes, points, out);
+    nearerOfSegment<true>(segments[ids[0]], 0, lanes, points, out);
+    for (size_t k = 1; k < ids.size(); ++k)
+        nearerOfSegment<false>(segments[ids[k]], double(k), lanes, points, out);
 }
 
 }  // namespace nenrin
