@@ -122,6 +122,14 @@ void measureChains(const ReachBounds& bounds, bool plain, TileChains& chains,
         }
         buffers.byQuarter[c] = 1;
     }
+    // (Now that `paths` has stopped growing.)
+    buffers.taken.assign(chainCount, {});
+    for (size_t c = 0; c < chainCount; ++c) {
+        const int32_t index = buffers.nearestOf[c][0];
+        if (index >= 0 && buffers.paths[static_cast<size_t>(index)].taken)
+            buffers.taken[c] = {&buffers.paths[static_cast<size_t>(index)],
+                                &buffers.nearest[static_cast<size_t>(index)]};
+    }
 }
 
 /// Point i's nearest kept segment of chain c if measureChains measured it (its projection
@@ -202,6 +210,10 @@ void GrowthField::evaluateBranches(std::span<const Vec3> points, const PointQuar
     measureChains(bounds, plainThickening_, chains, quarters, points, out, buffers);
     SegmentBatch& kept = chains.segments;
     std::vector<BranchTerm>& terms = buffers.terms;
+    // (The buffers' arrays as local pointers: the terms' stores could alias the vectors.)
+    const ReachLanes* const reach = buffers.reach.data();
+    const TileChain* const tileChains = chains.chains.data();
+    const BranchBuffers::TakenLanes* const taken = buffers.taken.data();
     for (size_t i = 0; i < n; ++i) {
         const Vec3& p = points[i];
         GrowthSample& g = out[i];
@@ -209,17 +221,16 @@ void GrowthField::evaluateBranches(std::span<const Vec3> points, const PointQuar
         terms.clear();
         const uint8_t quarter = quarters.quarterOf(i);
         for (size_t c = 0; c < chainCount; ++c) {
-            const ReachLanes& lanes = buffers.reach[c];
-            const TileChain& tc = chains.chains[c];
-            const int32_t index = buffers.nearestOf[c][quarter];
-            if (index >= 0 && buffers.paths[static_cast<size_t>(index)].taken) {
+            const ReachLanes& lanes = reach[c];
+            const TileChain& tc = tileChains[c];
+            if (taken[c].terms) {
                 // measureChains has taken the chain at this point in lanes.
                 const size_t lane = i;
-                const BranchLanes& at = buffers.paths[static_cast<size_t>(index)];
+                const BranchLanes& at = *taken[c].terms;
                 const auto state = static_cast<LaneState>(at.state[lane]);
                 if (state == LaneState::kNone) continue;
                 if (state != LaneState::kScalar) {
-                    const NearestLanes& nearest = buffers.nearest[static_cast<size_t>(index)];
+                    const NearestLanes& nearest = *taken[c].nearest;
                     const uint32_t segment =
                         kept.id(tc.begin[quarter] + static_cast<uint32_t>(nearest.which[lane]));
                     const FieldSegment& s = segments_[segment];
@@ -274,8 +285,8 @@ void GrowthField::evaluateBranches(std::span<const Vec3> points, const PointQuar
     }
 }
 
-void GrowthField::describeKnot(const BranchTerm& t, const Vec3& point, double trunkTime,
-                               GrowthSample& g) const {
+inline void GrowthField::describeKnot(const BranchTerm& t, const Vec3& point, double trunkTime,
+                                      GrowthSample& g) const {
     g.knotChain = static_cast<int32_t>(t.chain);
     g.knotAxisDistance = t.distance;
     g.knotOffset = point - t.axisPoint;

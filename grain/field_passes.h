@@ -113,6 +113,12 @@ struct BranchBuffers {
     /// Per entry of `nearest`: the chain's tests, path and term at those lanes where taken
     /// (grain/branch_lanes.h).
     std::vector<BranchLanes> paths;
+    /// Per tile chain: its lanes in `paths` and `nearest` where taken for the whole chunk.
+    struct TakenLanes {
+        const BranchLanes* terms = nullptr;
+        const NearestLanes* nearest = nullptr;
+    };
+    std::vector<TakenLanes> taken;
     std::vector<BranchTerm> terms;  ///< of the current point
 };
 
@@ -121,9 +127,10 @@ struct TrunkBuffers {
     std::vector<uint32_t> candidates;  ///< trunk segments near the batch, sorted
     std::vector<uint32_t> kept;        ///< those kept for the current chunk
     std::vector<double> centreDistances;
-    PointLanes points;     ///< a chunk's points
-    SegmentLanes lanes;    ///< on their plain segment
-    NearestLanes nearest;  ///< or their nearest kept segment
+    PointLanes points;                ///< a chunk's points
+    SegmentLanes lanes;               ///< on their plain segment
+    NearestLanes nearest;             ///< or their nearest kept segment
+    std::vector<double> chunkMaxima;  ///< each chunk's largest T1
 };
 
 /// The chain culls' lists for one chain.

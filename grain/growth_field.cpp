@@ -79,9 +79,9 @@ std::span<const Vec3> swayPoints(std::span<const Vec3> input, size_t stencil, co
     return swayed;
 }
 
-double largestTrunkTime(std::span<const GrowthSample> samples) {
+double largest(std::span<const double> times) {
     double t = 0;
-    for (const GrowthSample& g : samples) t = std::max(t, g.trunkTime);
+    for (const double x : times) t = std::max(t, x);
     return t;
 }
 
@@ -174,15 +174,17 @@ void GrowthField::evaluateBatch(std::span<const Vec3> input, std::span<GrowthSam
                 cullChains(chains,
                            boxOf(std::span<const PointBox>(chunkBoxes)
                                      .subspan(g0 / kChunk, (g1 - g0 + kChunk - 1) / kChunk)),
-                           largestTrunkTime(out.subspan(g0, g1 - g0)), buffers.groupChains);
+                           largest(std::span<const double>(buffers.trunk.chunkMaxima)
+                                       .subspan(g0 / kChunk, (g1 - g0 + kChunk - 1) / kChunk)),
+                           buffers.groupChains);
         for (size_t c0 = g0; c0 < g1; c0 += kChunk) {
             const size_t c1 = std::min(g1, c0 + kChunk);
             const std::span<const Vec3> chunkPoints = points.subspan(c0, c1 - c0);
             const std::span<GrowthSample> chunkOut = out.subspan(c0, c1 - c0);
             const PointBox& chunk = chunkBoxes[c0 / kChunk];
             buffers.quarters.reset(chunkPoints, chunk.lo, chunk.hi);
-            prepareTileChains(groupChains, chunk, largestTrunkTime(chunkOut), buffers.quarters,
-                              buffers.tileChains, buffers.cull);
+            prepareTileChains(groupChains, chunk, buffers.trunk.chunkMaxima[c0 / kChunk],
+                              buffers.quarters, buffers.tileChains, buffers.cull);
             evaluateBranches(chunkPoints, buffers.quarters, buffers.tileChains, chunkOut,
                              buffers.branch);
         }

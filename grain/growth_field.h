@@ -140,8 +140,8 @@ private:
 
     // The passes of evaluateBatch after the sway, in order; each hands the next its answer.
     /// The trunk pass (trunk_pass.cpp): every point's trunk path T1 into `out` (the rest of
-    /// each sample reset); returns the largest T1. `batch`: the points' bounding box,
-    /// `chunks`: each chunk's.
+    /// each sample reset); returns the largest T1 (each chunk's in buffers.chunkMaxima).
+    /// `batch`: the points' bounding box, `chunks`: each chunk's.
     double evaluateTrunk(std::span<const Vec3> points, const PointBox& batch,
                          std::span<const PointBox> chunks, std::span<GrowthSample> out,
                          TrunkBuffers& buffers) const;
@@ -177,9 +177,10 @@ private:
     void evaluateBranches(std::span<const Vec3> points, const PointQuarters& quarters,
                           TileChains& chains, std::span<GrowthSample> out,
                           BranchBuffers& buffers) const;
-    /// Fills the sample's knot geometry from the branch path with the largest share.
-    void describeKnot(const BranchTerm& term, const Vec3& point, double trunkTime,
-                      GrowthSample& sample) const;
+    /// Fills the sample's knot geometry from the branch path with the largest share (inline:
+    /// defined and used in branch_pass.cpp only).
+    inline void describeKnot(const BranchTerm& term, const Vec3& point, double trunkTime,
+                             GrowthSample& sample) const;
 
     const SkeletonIndex* index_;
     GrainParams params_;

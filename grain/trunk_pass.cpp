@@ -114,9 +114,11 @@ double GrowthField::evaluateTrunk(std::span<const Vec3> points, const PointBox& 
                            candidates);
     std::sort(candidates.begin(), candidates.end());
 
-    double maxTrunkTime = 0;
+    std::vector<double>& chunkMaxima = buffers.chunkMaxima;
+    chunkMaxima.assign(chunks.size(), 0.0);
     for (size_t c0 = 0; c0 < points.size(); c0 += kChunk) {
         const size_t c1 = std::min(points.size(), c0 + kChunk);
+        double& maxTrunkTime = chunkMaxima[c0 / kChunk];
         const PointBox& chunk = chunks[c0 / kChunk];
         const std::span<const uint32_t> kept = keepTrunkCandidates(
             segments_, candidates, chunk, buffers.centreDistances, buffers.kept);
@@ -157,6 +159,8 @@ double GrowthField::evaluateTrunk(std::span<const Vec3> points, const PointBox& 
             maxTrunkTime = std::max(maxTrunkTime, out[i].T);
         }
     }
+    double maxTrunkTime = 0;
+    for (const double t : chunkMaxima) maxTrunkTime = std::max(maxTrunkTime, t);
     return maxTrunkTime;
 }
 
