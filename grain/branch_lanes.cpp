@@ -49,7 +49,8 @@ __attribute__((always_inline)) inline void smoothstep4(const Four& e0, const Fou
 /// no memory that its stores could alias).
 struct SegmentConstants {
     double ax, ay, az, bx, by, bz, birthA, birthDelta, inverseSpeed, deathTime;
-    double birthBound, gammaBound, deathBound, power;
+    double birthBound, gammaBound, deathBound;
+    int power;  ///< diebackPower of the smallest dieback exponent
     bool boundMortal, mortal;
     /// The previous and the next segment's a, ab and 1 / |ab|^2 (NaN where there is none:
     /// no point is then in its slab).
@@ -98,26 +99,29 @@ __attribute__((always_inline)) inline void laneGroup(const SegmentConstants& c,
     const Mask passes = ~((sinAlpha <= 0.0) | (slack <= 0.0) | (outside2 > radius2));
     const Four needed = bounds.reach * t1 * sinAlpha;
     Mask keep = passes & ~(d2 > radius2) & ~(c.birthBound >= needed);
+    const bool all = (mask[0] & mask[1] & mask[2] & mask[3]) != 0;
+    // No term in any lane: only the state is read.
+    auto none = [&] {
+        const Mask taken = keep & mask;
+        return (taken[0] | taken[1] | taken[2] | taken[3]) == 0;
+    };
+    if (none()) return storeWhere(&out.state[g], mask, all, zero);
     const double gs = c.gammaBound * bounds.speedBound;
     if (c.boundMortal) {
-        // diebackLowerBound (grain/field_bounds.h), its product under masks.
+        // diebackLowerBound (grain/field_bounds.h).
         Four root;
         squareRoot(d2, root);
         const Four bound = c.birthBound + root / gs;
         const Four x = bound / c.deathBound;
         Four factor = one;
-        for (int n = 0; n < 8; ++n) factor = n < c.power ? factor * x : factor;
+        for (int n = 0; n < c.power; ++n) factor *= x;
         const Four lower = bound > c.deathBound ? bound * factor : bound;
         keep &= ~(lower >= needed);
     } else {
         const Four reachable = gs * (needed - c.birthBound);
         keep &= ~(d2 >= reachable * reachable);
     }
-    const bool all = (mask[0] & mask[1] & mask[2] & mask[3]) != 0;
-    // No term in any lane: only the state is read.
-    const Mask taken = keep & mask;
-    if ((taken[0] | taken[1] | taken[2] | taken[3]) == 0)
-        return storeWhere(&out.state[g], mask, all, zero);
+    if (none()) return storeWhere(&out.state[g], mask, all, zero);
     // The path (grain/path_time.h: chainPathTime with no blend is segmentPathTime at t,
     // which inside the slab is tRaw).
     const Four nx = c.ax + c.bx * u, ny = c.ay + c.by * u, nz = c.az + c.bz * u;
