@@ -1,5 +1,6 @@
 #include "grain/branch_lanes.h"
 
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -60,6 +61,7 @@ struct SegmentConstants {
 
 SegmentConstants constantsOf(std::span<const FieldSegment> segments, uint32_t id) {
     const FieldSegment& s = segments[id];
+    assert(s.branch);  // eq. 10 is applied past deathTime without asking
     SegmentConstants c{};
     c.ax = s.a.x, c.ay = s.a.y, c.az = s.a.z, c.bx = s.ab.x, c.by = s.ab.y, c.bz = s.ab.z;
     c.birthA = s.birthA, c.birthDelta = s.birthDelta, c.inverseSpeed = s.inverseSpeed;

@@ -3,7 +3,7 @@
 /// evaluation is organised", step 5): where measureChains has found each point's nearest of
 /// the chain's kept segments in lanes, the tests that may drop the chain there, its path time
 /// (chainPathTime's no-blend case) and the term's reach weight and dead share, in one loop
-/// over the lanes written so that it vectorises. Each lane computes what the per-point code
+/// over the lanes written with vector types. Each lane computes what the per-point code
 /// computes, in the same order: the same bits. Only for fields with plain thickening
 /// (GrowthField::plainThickening_: no age warp either). Internal to grain/.
 
@@ -30,7 +30,7 @@ struct BranchLaneInputs {
     const ReachLanes& reach;
 };
 
-/// Fills lanes [0, n) of `out`. At most 16 segments in `ids`.
+/// Fills lanes [0, n) of `out` (lanes up to the next multiple of 4 hold what is not used).
 void branchLanes(const ReachBounds& bounds, const BranchLaneInputs& in, BranchLanes& out);
 
 }  // namespace nenrin
