@@ -89,8 +89,7 @@ void measureChains(const ReachBounds& bounds, bool plain, TileChains& chains,
         if (buffers.paths.size() <= used) buffers.paths.resize(used + 1);
         const std::span<const uint32_t> ids = chains.segments.ids(begin, end);
         nearestOfSegments(bounds.segments, ids, at, count, buffers.nearest[used]);
-        buffers.paths[used].taken = plain && whole;
-        if (buffers.paths[used].taken)
+        if (plain && whole)
             branchLanes(bounds,
                         {ids, at, count, buffers.nearest[used], buffers.trunkTimes.data(),
                          buffers.reach[c]},
@@ -124,9 +123,9 @@ void measureChains(const ReachBounds& bounds, bool plain, TileChains& chains,
     }
     // (Now that `paths` has stopped growing.)
     buffers.taken.assign(chainCount, {});
-    for (size_t c = 0; c < chainCount; ++c) {
+    for (size_t c = 0; c < chainCount && plain; ++c) {
         const int32_t index = buffers.nearestOf[c][0];
-        if (index >= 0 && buffers.paths[static_cast<size_t>(index)].taken)
+        if (index >= 0 && !buffers.byQuarter[c])
             buffers.taken[c] = {&buffers.paths[static_cast<size_t>(index)],
                                 &buffers.nearest[static_cast<size_t>(index)]};
     }

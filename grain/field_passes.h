@@ -90,7 +90,6 @@ struct BranchLanes {
     std::array<double, kLanes> ax, ay, az;  ///< the axis point
     std::array<double, kLanes> weight;      ///< junctionReachWeight (kTerm lanes)
     std::array<double, kLanes> dead;        ///< the encased-knot share (kTerm, kDieback)
-    bool taken = false;                     ///< false: the lanes were not filled
 };
 
 /// The branch pass's buffers, for one chunk.
@@ -110,8 +109,8 @@ struct BranchBuffers {
     /// by the point.
     std::vector<uint8_t> byQuarter;
     std::vector<NearestLanes> nearest;
-    /// Per entry of `nearest`: the chain's tests, path and term at those lanes where taken
-    /// (grain/branch_lanes.h).
+    /// Per entry of `nearest`: the chain's tests, path and term at those lanes, filled for
+    /// whole-chunk entries with plain thickening (grain/branch_lanes.h).
     std::vector<BranchLanes> paths;
     /// Per tile chain: its lanes in `paths` and `nearest` where taken for the whole chunk.
     struct TakenLanes {
