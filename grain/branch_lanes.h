@@ -17,12 +17,15 @@
 
 namespace nenrin {
 
+/// The most kept segments branchLanes takes for one chain.
+constexpr size_t kBranchLaneSegments = 12;
+
 /// The lanes' inputs: a chunk's n points and their nearest of the segments `ids` (`nearest`),
 /// their trunk times and the chain's reachTests there. (Not for a chain whose kept segments
 /// differ by quarter of the chunk: there each lane's segment is one of more, for fewer lanes,
 /// and the per-point code costs less.)
 struct BranchLaneInputs {
-    std::span<const uint32_t> ids;
+    std::span<const uint32_t> ids;  ///< at most kBranchLaneSegments
     const PointLanes& points;
     size_t n;
     const NearestLanes& nearest;

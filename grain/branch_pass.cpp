@@ -21,6 +21,7 @@ namespace {
 /// Up to this many kept segments of a chain, a point measures them in double one by one: the
 /// vectorised float pass only pays beyond.
 constexpr uint32_t kDirectScan = 12;
+static_assert(kDirectScan <= kBranchLaneSegments, "branchLanes takes what is scanned directly");
 
 /// The nearest to p of the kept segments [begin, end): a few (the usual case) measured in
 /// double directly, more in one vectorised float pass with near-ties settled in double. Both
