@@ -5,6 +5,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "tests/cli/cli_fixture.h"
+#include "tests/scratch_path.h"
 
 namespace {
 
@@ -289,7 +290,7 @@ TEST_F(RenderCliTest, MatchesTheReferenceImage) {
                                            OIIO::ROI(0, 96, 0, 64, 0, 1, 0, 3));
     double values = 96.0 * 64 * 3;
     // The test folder is removed afterwards: keep the candidate where the message says.
-    const fs::path candidate = fs::temp_directory_path() / "nenrin-small-glulam-candidate.exr";
+    const fs::path candidate = nenrin::scratchPath("small-glulam-candidate.exr");
     if (cmp.nfail / values > 0.01 || cmp.meanerror > 0.004)
         fs::copy_file(out, candidate, fs::copy_options::overwrite_existing);
     EXPECT_LE(cmp.nfail / values, 0.01)

@@ -20,6 +20,7 @@
 #include "renderer/bake/grid_bake.h"
 #include "renderer/bake/grid_writers.h"
 #include "shader/wood_shader.h"
+#include "tests/scratch_path.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -28,14 +29,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kMokume = fs::path(NENRIN_SOURCE_DIR) / "../shared/data/mokume";
-
-/// A fresh folder for one test.
-fs::path scratch(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("nenrin-fit-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 /// The faces of a 5 cm cube centred at the origin, as the Mokume samples lay them out.
 struct CubeFace {
@@ -84,7 +77,8 @@ TEST(SampleFile, ReadsTheMokumeCubes) {
 }
 
 TEST(SampleFile, NamesTheFileAndPlaceOfEachMistake) {
-    const fs::path dir = scratch("sample-errors");
+    const ScratchFolder folder("fit-sample-errors");
+    const fs::path& dir = folder.path();
     const std::string image =
         (fs::path(NENRIN_SOURCE_DIR) / "tests/data/ref/table-top-closeup-4096spp.png").string();
     auto expectError = [&](const nlohmann::json& j, const std::string& where,
@@ -223,7 +217,8 @@ SyntheticSample bakeSyntheticSample(const fs::path& dir, bool knot = false,
 }
 
 TEST(WoodFit, RecoversThePithAndTheRingWidthsOfABakedCube) {
-    const SyntheticSample truth = bakeSyntheticSample(scratch("round-trip"));
+    const ScratchFolder folder("fit-round-trip");
+    const SyntheticSample truth = bakeSyntheticSample(folder.path());
     const Sample sample = loadSampleFile(truth.file.string());
     FitOptions options;
     options.threads = 2;
@@ -294,9 +289,10 @@ FitOptions hinokiOptions(const fs::path& base = fs::path(NENRIN_SOURCE_DIR) /
 /// as baked, the knot wood's ring contrast matched. Returns the fit.
 WoodFit expectBakedKnotFitted(const std::string& name, double truthDarkening,
                               double baseDarkening) {
-    const SyntheticSample truth = bakeSyntheticSample(scratch(name), true, truthDarkening);
+    const ScratchFolder folder("fit-" + name), baseFolder("fit-" + name + "-base");
+    const SyntheticSample truth = bakeSyntheticSample(folder.path(), true, truthDarkening);
     const Sample sample = loadSampleFile(truth.file.string());
-    const fs::path base = scratch(name + "-base") / "hinoki.json";
+    const fs::path base = baseFolder.path() / "hinoki.json";
     writeJson(base, hinokiWith(baseDarkening));
     // The knot's flanks are the junction's (eq. 5): from the grain it was baked with.
     WoodFit fit = fitSample(sample, hinokiOptions(base));

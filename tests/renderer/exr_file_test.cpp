@@ -20,6 +20,7 @@
 
 #include "renderer/exr_zip.h"
 #include "renderer/film.h"
+#include "tests/scratch_path.h"
 #include "util/hash.h"
 
 namespace nenrin {
@@ -36,10 +37,9 @@ TEST(ExrFile, ThreadsCompressTheSameBytes) {
     std::vector<float> pixels(size_t(width) * height * 2);
     for (size_t i = 0; i < pixels.size(); ++i)
         pixels[i] = float(i % 7 == 0 ? uniform01(3, i) : double(i % 300) / 300);
-    const auto dir = std::filesystem::temp_directory_path();
     std::vector<std::string> files;
     for (int threads : {1, 2, 4}) {
-        const auto path = dir / ("nenrin-exr-threads-" + std::to_string(threads) + ".exr");
+        const auto path = scratchPath("exr-threads-" + std::to_string(threads) + ".exr");
         writeFloatExr(path.string(), path.string(), width, height, {"R", "Z"}, pixels.data(),
                       {{"k", "v"}}, {}, ExrValues::SceneLinear, threads);
         files.push_back(fileBytes(path));
@@ -70,7 +70,7 @@ TEST(FilmExr, EveryChannelComesBackFromItsOwnPlane) {
         if (adaptive) planes.push_back(&film.samples);
         for (size_t k = 0; k < planes.size(); ++k)
             for (size_t i = 0; i < planes[k]->size(); ++i) (*planes[k])[i] = float(100 * k + i);
-        const auto path = std::filesystem::temp_directory_path() / "nenrin-film-planes.exr";
+        const auto path = scratchPath("film-planes.exr");
         writeFilmExr(film, path.string(), {});
         FloatExr image = readFloatExr(path.string());
         std::filesystem::remove(path);
@@ -95,8 +95,7 @@ TEST(ExrFile, ChannelsApartInMemoryWriteTheSameFileAsInterleaved) {
         for (int c = 0; c < 3; ++c) interleaved[4 * i + c] = rgb[3 * i + c];
         interleaved[4 * i + 3] = z[i];
     }
-    const auto dir = std::filesystem::temp_directory_path();
-    const auto a = dir / "nenrin-exr-interleaved.exr", b = dir / "nenrin-exr-planes.exr";
+    const auto a = scratchPath("exr-interleaved.exr"), b = scratchPath("exr-planes.exr");
     const RowBand band{first, first + rows};
     writeFloatExr(a.string(), a.string(), width, height, {"R", "G", "B", "Z"}, interleaved.data(),
                   {}, band);
@@ -127,7 +126,7 @@ TEST(ExrFile, WhatOpenExrRejectsIsAnErrorAndLongKeysAreKept) {
     // OpenEXRCore reports a bad header while it holds its context's lock: the error must come
     // back as an InputError naming the file (an error callback that asked the context for its
     // user data deadlocked here).
-    const auto path = std::filesystem::temp_directory_path() / "nenrin-exr-rejected.exr";
+    const auto path = scratchPath("exr-rejected.exr");
     const std::vector<float> pixels(2 * 4 * 3, 0.5f);
     for (const auto& [width, channels] :
          {std::pair<int, std::vector<std::string>>{4, {"R", "R"}}, {0, {"R", "G"}}}) {
@@ -171,7 +170,7 @@ TEST(ExrFile, BlocksThatDoNotCompressAreStoredRawAndReadBack) {
         if ((bits & 0x7F800000u) == 0x7F800000u) bits ^= 0x40000000u;  // not inf or NaN
         pixels[i] = i < size_t(16 * width) ? std::bit_cast<float>(bits) : float(i % width) / width;
     }
-    const auto path = std::filesystem::temp_directory_path() / "nenrin-exr-raw-block.exr";
+    const auto path = scratchPath("exr-raw-block.exr");
     writeFloatExr(path.string(), path.string(), width, height, {"Y"}, pixels.data(), {});
     const size_t bytes = fileBytes(path).size();
     const FloatExr back = readFloatExr(path.string());

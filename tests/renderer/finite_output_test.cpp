@@ -7,13 +7,14 @@
 #include <stdexcept>
 
 #include "renderer/exr_file.h"
+#include "tests/scratch_path.h"
 
 namespace nenrin {
 namespace {
 
 // The writers' last guard: a NaN or Inf never reaches a file, and the error says where it was.
 TEST(FiniteOutput, ANonFiniteSampleIsNamedAndNothingIsWritten) {
-    const auto path = std::filesystem::temp_directory_path() / "nenrin-finite-output.exr";
+    const auto path = scratchPath("finite-output.exr");
     std::filesystem::remove(path);
     std::vector<float> pixels(2 * 2 * 3, 0.5f);
     pixels[4] = std::nanf("");  // sample (1, 0), G

@@ -19,6 +19,7 @@
 #include "renderer/jobs/furniture_job.h"
 #include "renderer/scene_file.h"
 #include "renderer/texture_set/uv_raster.h"
+#include "tests/scratch_path.h"
 #include "util/json_parse.h"
 
 namespace nenrin {
@@ -256,7 +257,7 @@ TEST(FurnitureParts, GltfNodeTransformsTurnTheirPartsFibre) {
            {"min", {-0.25, -0.02, -0.03}},
            {"max", {0.25, 0.02, 0.03}}},
           {{"bufferView", 1}, {"componentType", 5123}, {"count", 36}, {"type", "SCALAR"}}}}};
-    const fs::path file = fs::temp_directory_path() / "nenrin-furniture-test-rails.gltf";
+    const fs::path file = scratchPath("furniture-test-rails.gltf");
     std::ofstream(file) << gltf.dump();
     const std::vector<ModelPart> parts =
         splitModelParts(loadFurnitureModel(file.string(), 1.0), file.string());
@@ -278,7 +279,7 @@ TEST(FurnitureParts, GltfNodeTransformsTurnTheirPartsFibre) {
 // says it lies in the log (log.position and log.rotate read back by the scene loader).
 TEST(FurnitureJob, TheSceneHoldsEveryPartWhereThePlanSays) {
     namespace fs = std::filesystem;
-    const fs::path out = fs::temp_directory_path() / "nenrin-furniture-test-scene";
+    const fs::path out = scratchPath("furniture-test-scene");
     fs::remove_all(out);
     FurnitureJob job;
     job.model = std::string(NENRIN_SOURCE_DIR) + "/tests/data/furniture/oak-chair/oakChair.obj";

@@ -10,6 +10,7 @@
 #include "renderer/png_file.h"
 #include "renderer/stats/photo_lab.h"
 #include "renderer/stats/stats_image.h"
+#include "tests/scratch_path.h"
 #include "util/hash.h"
 #include "util/input_error.h"
 
@@ -62,7 +63,7 @@ TEST(ImageStatistics, UniformNoiseHasFineAnisotropyNearOne) {
 
 /// Writes a constant 8-bit PNG of `w` x `h` pixels.
 fs::path constantPng(const std::string& name, int w, int h, std::array<uint8_t, 3> rgb) {
-    const fs::path path = fs::temp_directory_path() / name;
+    const fs::path path = scratchPath(name);
     std::vector<uint8_t> pixels;
     for (int i = 0; i < w * h; ++i) pixels.insert(pixels.end(), rgb.begin(), rgb.end());
     writePng8(path.string(), path.string(), w, h, pixels, {});
@@ -97,7 +98,7 @@ TEST(ImageStatistics, AConstantImagesLabIsTheFormulas) {
 
 // EXR colours are linear, clipped at 0 before anything else.
 TEST(ImageStatistics, ExrColoursAreLinearAndClippedAtZero) {
-    const fs::path exr = fs::temp_directory_path() / "nenrin-stats-linear.exr";
+    const fs::path exr = scratchPath("stats-linear.exr");
     std::vector<float> pixels;
     for (int i = 0; i < 64 * 64; ++i) pixels.insert(pixels.end(), {0.2f, 0.3f, -0.4f});
     writeFloatExr(exr.string(), exr.string(), 64, 64, {"R", "G", "B"}, pixels.data(), {});

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "skeleton/skeleton_file.h"
+#include "tests/scratch_path.h"
 #include "util/input_error.h"
 #include "util/random_draws.h"
 
@@ -193,7 +194,7 @@ TEST(AkagiModel, GrowSpeciesReturnsAPlausibleTreeAndRejectsUnknownNames) {
 
 TEST(AkagiModel, UsersCanGrowFromTheirOwnTableFile) {
     // A dichotomous species (MainGrowth ~ 0: 100 x MainGrowth < 1, the main child is a leaf).
-    std::string path = (std::filesystem::temp_directory_path() / "akagi_own_table.csv").string();
+    std::string path = scratchPath("akagi-own-table.csv").string();
     {
         std::ofstream out(path);
         out << "# two-way forking shrub\n"

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tests/scratch_path.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -21,9 +22,7 @@ Stand sampleStand() {
     return simulateStand(o);
 }
 
-std::string tempPath(const std::string& name) {
-    return (std::filesystem::temp_directory_path() / ("nenrin_kunii_" + name)).string();
-}
+std::string tempPath(const std::string& name) { return scratchPath("kunii-" + name).string(); }
 
 TEST(KuniiStandFile, RoundTripsExactly) {
     Stand stand = sampleStand();

@@ -10,6 +10,7 @@
 #include "skeleton/skeleton_writer.h"
 #include "skeleton/sources/measured/gran1_import.h"
 #include "skeleton/sources/measured/qsm_import.h"
+#include "tests/scratch_path.h"
 #include "util/input_error.h"
 #include "util/json_reader.h"
 
@@ -80,7 +81,7 @@ TEST(Gran1Import, MissingOrBrokenFilesNameTheFile) {
     bad.rings = -3;
     EXPECT_THROW(importGran1(kGran1, bad), InputError);
     // A radius map of 1e308 mm once summed to Inf and wrote null radii the loader refused.
-    const auto dir = std::filesystem::temp_directory_path() / "nenrin-gran1-huge";
+    const auto dir = scratchPath("gran1-huge");
     std::filesystem::create_directories(dir);
     for (const char* part : {"_pith.json", "_knots.json"})
         std::filesystem::copy_file(kGran1 + part, dir / (std::string("G") + part),
