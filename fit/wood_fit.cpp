@@ -9,6 +9,7 @@
 
 #include "fit/knot_colour.h"
 #include "fit/knot_rings.h"
+#include "fit/profile_sharpening.h"
 #include "grain/grain_params.h"
 #include "grain/grown_tree.h"
 #include "renderer/bake/bake_specs.h"
@@ -412,6 +413,10 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
     fit.warp = fitRingWarp(fitted, fit.pith);
     progress.advance();
     fit.profile = measureRadialRings(ringFaces(fitted, knots), fit.pith, fit.warp, sample.file);
+    // The shells' average blurs the late-wood line; undone by the width of the ring boundary.
+    const SharpenedProfile sharpened = sharpenLateWoodProfile(fit.profile.strip.lateWoodProfile);
+    fit.profile.strip.lateWoodProfile = sharpened.profile;
+    fit.profileBlur = sharpened.blur;
     progress.advance();
     if (fit.profile.evenRings)
         fit.warnings.push_back(fmt::format(
@@ -509,6 +514,7 @@ nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
               {"measured_on_face", fit.profile.face},
               {"boundary_radii", boundaries},
               {"widths", widths},
+              {"late_wood_blur", rounded(fit.profileBlur, 1e-4)},
               {"inner_radius", fit.profile.innerRadius},
               {"outer_radius", fit.profile.outerRadius}}},
             {"knots", knotsJson},

@@ -72,6 +72,8 @@ struct WoodFit {
     PithLine pith;
     RingWarp warp;
     RadialRings profile;
+    /// Ring phase: the blur the late-wood profile was sharpened by (fit/profile_sharpening.h).
+    double profileBlur = 0;
     std::vector<KnotBranch> branches;  ///< one per knot (or pair of faces' knots) seen
     Skeleton skeleton;
     nlohmann::json grain;
