@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "fit/cross_dating.h"
 #include "fit/knot_colour.h"
 #include "fit/knot_rings.h"
 #include "fit/profile_sharpening.h"
@@ -381,7 +382,8 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
     const size_t baseCount = std::max<size_t>(1, options.baseGrains.size());
     ProgressReporter progress(static_cast<long long>(3 + baseCount), "Fitting", options.quiet);
     WoodFit fit;
-    fit.pith = focusPithLine(fitPithLine(fitted, sample.file), fitted);
+    fit.pith = focusPithLine(
+        crossDatePithLine(fitPithLine(fitted, sample.file), fitted, options.threads), fitted);
     progress.advance();
     if (fit.pith.medianMisfitDeg > kNoRingsMisfitDeg)
         throw InputError(
@@ -407,7 +409,8 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
         maskKnots(fitted, knots);
         // Fitted again without the knots' rings, kept if it fits the rest better (with few
         // faces left the line can wander off).
-        const PithLine again = focusPithLine(fitPithLine(fitted, sample.file), fitted);
+        const PithLine again = focusPithLine(
+            crossDatePithLine(fitPithLine(fitted, sample.file), fitted, options.threads), fitted);
         if (pithMisfitDeg(again, fitted) < pithMisfitDeg(fit.pith, fitted)) fit.pith = again;
     }
     fit.warp = fitRingWarp(fitted, fit.pith);
