@@ -151,9 +151,7 @@ PithLine crossDatePithLine(const PithLine& pith, std::span<const FacePhoto> face
         }
         if (at.score > best.score) best = at;
     }
-    const Vec3 centreOffset = pith.point - pith.direction * dot(pith.point, pith.direction);
-    const double current = agreement(lineAt(dot(centreOffset, frame.s), dot(centreOffset, frame.t)),
-                                     pixels, faceCount);
+    const double current = agreement(pith, pixels, faceCount);
     if (!(best.score > current + margin)) return pith;
     PithLine out = lineAt(best.u, best.v);
     out.medianMisfitDeg = pithMisfitDeg(out, faces);

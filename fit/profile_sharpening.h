@@ -25,7 +25,7 @@ struct SharpenedProfile {
 SharpenedProfile sharpenLateWoodProfile(const std::vector<double>& profile);
 
 /// The profile blurred by a periodic Gaussian of `blur` (ring phase): what the fit's shell
-/// average makes of a sharp one (for tests, and the deconvolution's own step).
+/// average makes of a sharp one (the tests blur known profiles with it).
 std::vector<double> blurLateWoodProfile(const std::vector<double>& profile, double blur);
 
 }  // namespace nenrin
