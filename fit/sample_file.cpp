@@ -20,11 +20,12 @@ SampleFace readFace(JsonReader& face, const std::string& file, std::set<std::str
     const std::string image = face.string("image", "");
     if (image.empty()) throw face.error("image", "expected the face's photograph (a path)");
     f.image = pathRelativeTo(file, image);
-    if (!std::filesystem::is_regular_file(f.image))
+    std::error_code ec;  // a name the system refuses is a missing file, not a throw
+    if (!std::filesystem::is_regular_file(f.image, ec))
         throw face.error("image", "no such image file: " + f.image);
     if (face.has("rings")) {
         f.rings = pathRelativeTo(file, face.string("rings", ""));
-        if (!std::filesystem::is_regular_file(*f.rings))
+        if (!std::filesystem::is_regular_file(*f.rings, ec))
             throw face.error("rings", "no such image file: " + *f.rings);
     }
     f.origin = face.requireVec3("origin");

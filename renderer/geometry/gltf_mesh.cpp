@@ -197,7 +197,11 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
     }
 }
 std::string expandNothing(const std::string& path, void*) { return path; }
-bool fileExists(const std::string& path, void*) { return std::filesystem::exists(path); }
+/// A name the system refuses (too long, a bad component) is a file that is not there, not a throw.
+bool fileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::exists(path, ec);
+}
 bool refuseWriting(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
     *err = "nenrin does not write while reading a glTF";
     return false;

@@ -105,6 +105,8 @@ TEST(SampleFile, NamesTheFileAndPlaceOfEachMistake) {
     expectError({{"size", {0.05, 0.05, 1e308}}, {"faces", {face}}}, "size[2]", "beyond");
     expectError({{"size", {0.05, 0.05, 20}}, {"faces", {face}}}, "size", "1 mm to 10 m");
     expectError(with("image", "missing.png"), "faces[0].image", "no such image");
+    expectError(with("image", std::string(300, 'x') + ".png"), "faces[0].image",
+                "no such image");  // a name too long for the system: once a filesystem throw
     expectError(with("right", {0, 0, 0}), "faces[0].right", "1 mm to 10 m");
     expectError(with("up", {0.05, 0, 0}), "faces[0].up", "across");
     expectError(with("rihgt", {0.05, 0, 0}), "faces[0].rihgt", "unknown key");

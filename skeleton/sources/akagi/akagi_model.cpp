@@ -457,9 +457,10 @@ AkagiTree growAkagiSpecies(const std::string& speciesOrTablePath, uint64_t seed,
         throw InputError("Akagi tree", "maxAttempts", "expected at least 1");
     bool builtin = false;
     for (const std::string& n : akagiSpeciesNames()) builtin |= n == speciesOrTablePath;
+    std::error_code ec;  // a name the system refuses is not a file
     bool looksLikePath = speciesOrTablePath.find('/') != std::string::npos ||
                          speciesOrTablePath.find('.') != std::string::npos ||
-                         std::filesystem::exists(speciesOrTablePath);
+                         std::filesystem::exists(speciesOrTablePath, ec);
     ObservationTable table = builtin || !looksLikePath ? akagiSpeciesTable(speciesOrTablePath)
                                                        : loadAkagiObservations(speciesOrTablePath);
     AkagiFit fit = fitAkagiModel(table, options.mcmc);

@@ -96,6 +96,16 @@ TEST(GltfMesh, ABufferThatIsADeviceIsRefused) {
     std::remove(path.c_str());
 }
 
+TEST(GltfMesh, ABufferNameTheSystemRefusesIsAnInputError) {
+    // A 300-character folder name (over the 255 a name may have): the system answers "name too
+    // long", which once escaped as a std::filesystem error (found by fuzz_gltf_mesh).
+    const std::string path = ::testing::TempDir() + "/nenrin-long-buffer-name.gltf";
+    std::ofstream(path) << R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")"
+                        << std::string(300, 'b') << R"(/x.bin", "byteLength": 12}]})";
+    EXPECT_THROW(loadGltfMesh(path), InputError);
+    std::remove(path.c_str());
+}
+
 TEST(GltfMesh, RecognisesTheExtensions) {
     EXPECT_TRUE(isGltfPath("a/b.gltf"));
     EXPECT_TRUE(isGltfPath("B.GLB"));
