@@ -15,18 +15,13 @@ void Film::resize(int w, int h, int first, int count) {
     firstRow = first;
     rows = count < 0 ? h - first : count;
     size_t n = size_t(w) * rows;
-    rgb.assign(3 * n, 0);
-    albedo.assign(3 * n, 0);
-    normal.assign(3 * n, 0);
-    diffuse.assign(3 * n, 0);
-    alpha.assign(n, 0);
-    depth.assign(n, 0);
-    growthTime.assign(n, 0);
-    knot.assign(n, 0);
+    // New planes, not assign(): their zeros are the fresh pages' own, and the tiles that write
+    // them take the pages' first touches in parallel.
+    for (FilmPlane* p : {&rgb, &albedo, &normal, &diffuse}) *p = FilmPlane(3 * n);
+    for (FilmPlane* p : {&alpha, &depth, &growthTime, &knot, &variance, &occlusion})
+        *p = FilmPlane(n);
     lamella.assign(n, -1);
-    variance.assign(n, 0);
     visibility.assign(n, 1);
-    occlusion.assign(n, 0);
 }
 
 std::vector<std::string> filmChannelNames(bool adaptive) {

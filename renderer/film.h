@@ -29,17 +29,23 @@
 #include <string>
 #include <vector>
 
+#include "util/zero_page_allocator.h"
+
 namespace nenrin {
+
+/// One channel group of a film: zero until written, cleared by nobody (util/zero_page_allocator.h).
+using FilmPlane = std::vector<float, ZeroPageAllocator<float>>;
 
 struct Film {
     int width = 0, height = 0;  ///< the whole frame
     /// The rows the film holds: all of them, unless a split job (--tile) renders a band.
     int firstRow = 0, rows = 0;
-    std::vector<float> rgb, albedo, normal, diffuse;  ///< 3 per pixel, row firstRow first
-    std::vector<float> alpha, depth, growthTime, knot, lamella, variance, visibility, occlusion;
-    std::vector<float> samples;  ///< per pixel; empty unless sampling was adaptive
+    FilmPlane rgb, albedo, normal, diffuse;  ///< 3 per pixel, row firstRow first
+    FilmPlane alpha, depth, growthTime, knot, lamella, variance, visibility, occlusion;
+    FilmPlane samples;  ///< per pixel; empty unless sampling was adaptive
 
-    /// A frame of w x h holding rows [first, first + count) (count < 0: to the bottom).
+    /// A frame of w x h holding rows [first, first + count) (count < 0: to the bottom), every
+    /// channel new: zero, but lamella -1 and visibility 1.
     void resize(int w, int h, int first = 0, int count = -1);
 };
 

@@ -52,14 +52,14 @@ Guides guidesOf(const Film& film, const DenoiseOptions& o) {
     const size_t n = size_t(film.width) * film.height;
     g.demodulate.assign(3 * n, 1.0f);
     g.normal.assign(3 * n, 0.0f);
-    g.depth = film.depth;
-    g.visibility = film.visibility;
+    g.depth.assign(film.depth.begin(), film.depth.end());
+    g.visibility.assign(film.visibility.begin(), film.visibility.end());
     g.visibilityScale.assign(n, float(o.sigmaVisibility));
     g.albedo.assign(n, 1.0f);
     g.depthSlope.assign(n, 0.0f);
     g.depthGradient.assign(2 * n, 0.0f);
     g.hit.assign(n, 0);
-    g.occlusion = film.occlusion;
+    g.occlusion.assign(film.occlusion.begin(), film.occlusion.end());
     g.occlusionScale.assign(n, float(o.sigmaOcclusion));
     for (size_t i = 0; i < n; ++i) {
         if (!(film.alpha[i] > 0)) continue;

@@ -63,10 +63,10 @@ TEST(FilmExr, EveryChannelComesBackFromItsOwnPlane) {
         Film film;
         film.resize(7, 5);
         if (adaptive) film.samples.assign(film.alpha.size(), 0);
-        std::vector<std::vector<float>*> planes = {
-            &film.rgb,     &film.albedo,   &film.normal,     &film.diffuse,
-            &film.alpha,   &film.depth,    &film.growthTime, &film.knot,
-            &film.lamella, &film.variance, &film.visibility, &film.occlusion};
+        std::vector<FilmPlane*> planes = {&film.rgb,        &film.albedo,     &film.normal,
+                                          &film.diffuse,    &film.alpha,      &film.depth,
+                                          &film.growthTime, &film.knot,       &film.lamella,
+                                          &film.variance,   &film.visibility, &film.occlusion};
         if (adaptive) planes.push_back(&film.samples);
         for (size_t k = 0; k < planes.size(); ++k)
             for (size_t i = 0; i < planes[k]->size(); ++i) (*planes[k])[i] = float(100 * k + i);
@@ -76,7 +76,7 @@ TEST(FilmExr, EveryChannelComesBackFromItsOwnPlane) {
         std::filesystem::remove(path);
         orderChannels(image, filmChannelNames(adaptive), path.string());  // EXR sorts them
         const Film back = filmFromExr(image, path.string());
-        const std::vector<const std::vector<float>*> backPlanes = {
+        const std::vector<const FilmPlane*> backPlanes = {
             &back.rgb,        &back.albedo,     &back.normal, &back.diffuse, &back.alpha,
             &back.depth,      &back.growthTime, &back.knot,   &back.lamella, &back.variance,
             &back.visibility, &back.occlusion,  &back.samples};
