@@ -8,11 +8,14 @@
 #include <limits>
 
 #include "fit/cross_dating.h"
+#include "fit/end_grain_tint.h"
 #include "fit/knot_colour.h"
 #include "fit/knot_rings.h"
 #include "fit/profile_sharpening.h"
+#include "fit/texture_match.h"
 #include "grain/grain_params.h"
 #include "grain/grown_tree.h"
+#include "grain/wood_colour.h"
 #include "renderer/bake/bake_specs.h"
 #include "renderer/bake/grid_bake.h"
 #include "renderer/stats/image_statistics.h"
@@ -84,22 +87,6 @@ nlohmann::json fittedGrain(const std::string& base, const Sample& sample,
 /// Rounds of colour calibration at most.
 constexpr int kColourRounds = 3;
 constexpr int kKnotColourRounds = 2;
-
-/// The fitted faces' photographed mean colour over their baked one, per channel (linear).
-Rgb colourRatio(const std::vector<FaceFigures>& faces) {
-    double photo[3] = {0, 0, 0}, baked[3] = {0, 0, 0};
-    for (const FaceFigures& f : faces) {
-        if (f.heldOut) continue;
-        for (int c = 0; c < 3; ++c)
-            for (int y = 0; y < f.bake.height; ++y)
-                for (int x = 0; x < f.bake.width; ++x) {
-                    photo[c] += f.photo[size_t(c)].at(x, y);
-                    baked[c] += f.bake.at(x, y)[c];
-                }
-    }
-    auto ratio = [&](int c) { return baked[c] > 0 && photo[c] > 0 ? photo[c] / baked[c] : 1.0; };
-    return {ratio(0), ratio(1), ratio(2)};
-}
 
 /// The face baked through the fitted wood at the statistics' scale, measured against its
 /// photograph.
@@ -178,6 +165,16 @@ double textureMisfit(const std::vector<FaceFigures>& faces) {
             sum += ratio > 0 ? std::pow(std::log(ratio), 2) : 100.0;
     }
     return sum;
+}
+
+/// Each face's end-grain weight, as the shader weighs it with the fibre along the pith.
+std::vector<double> endGrainWeights(std::span<const FacePhoto> photos, const PithLine& pith) {
+    std::vector<double> weights;
+    for (const FacePhoto& p : photos) {
+        const Vec3 normal = normalize(cross(p.face->right, p.face->up));
+        weights.push_back(endGrainWeight(std::abs(dot(normal, pith.direction))));
+    }
+    return weights;
 }
 
 /// Each photograph's strongest ring centre, found once (whether it is a knot depends on the
@@ -449,12 +446,16 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 0);
     }
     std::vector<FaceKnot> aimed = knots;
-    if (aimKnots(aimed, knotFigures(photos, centres, fit.faces, fit.pith))) {
-        placeBranches(fit, aimed, sample);
+    const bool aim = aimKnots(aimed, knotFigures(photos, centres, fit.faces, fit.pith));
+    if (aim) placeBranches(fit, aimed, sample);
+    if (aim || bases.size() > 1)
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
-    } else if (bases.size() > 1) {
-        fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 3);
-    }
+    const std::vector<double> endWeights = endGrainWeights(photos, fit.pith);
+    auto rebake = [&] { return calibrateColours(fit.grain, fit.skeleton, photos, options, 0); };
+    fit.texture = matchTexture(fit.grain, fit.faces, endWeights, rebake);
+    if (fit.texture.bakes > 0)
+        fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, kColourRounds);
+    matchEndGrainTint(fit.grain, fit.faces, endWeights, rebake, kColourRounds);
     if (!fit.branches.empty()) colourKnots(fit, photos, options);
     fit.knots = knotFigures(photos, centres, fit.faces, fit.pith);
     if (options.baseGrains.empty())
@@ -522,6 +523,11 @@ nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
               {"outer_radius", fit.profile.outerRadius}}},
             {"knots", knotsJson},
             {"anatomy_from", fit.base},
+            {"texture_strengths",
+             {{"side_cells", fit.texture.sideCells},
+              {"end_cells", fit.texture.endCells},
+              {"end_rest", fit.texture.endRest},
+              {"bakes", fit.texture.bakes}}},
             {"faces", faces},
             {"warnings", fit.warnings}};
 }

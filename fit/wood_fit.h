@@ -68,6 +68,13 @@ struct KnotRingContrast {
     int pixels = 0;
 };
 
+/// How strongly the anatomy shows, fitted against the base grain's (1 = as it was;
+/// fit/texture_match.h): the cells' on side and on end grain, the rest's on end grain.
+struct TextureStrengths {
+    double sideCells = 1, endCells = 1, endRest = 1;
+    int bakes = 0;  ///< bakes the fit took
+};
+
 struct WoodFit {
     PithLine pith;
     RingWarp warp;
@@ -81,6 +88,7 @@ struct WoodFit {
     std::vector<FaceFigures> faces;
     std::vector<KnotFigures> knots;  ///< every face whose photograph shows a knot
     KnotRingContrast knotRings;      ///< of the knot wood, photographs and bakes
+    TextureStrengths texture;
     std::vector<std::string> warnings;
     double seconds = 0;
 };
