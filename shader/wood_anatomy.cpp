@@ -361,8 +361,10 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
     const double b = (1 + weight * fibre) * (1 + weight * p.rayContrast * ray) *
                      (1 - weight * p.resinDarkening * resin);
     const double darkening = weight * p.poreDarkening * pore;
-    out.filter = {b * (1 - darkening * p.poreTint.r), b * (1 - darkening * p.poreTint.g),
-                  b * (1 - darkening * p.poreTint.b)};
+    // The parser bounds each strength, but end grain multiplies them (up to 5 x): strong
+    // noise or deep pores could take the filter, and the albedo, below zero.
+    auto filter = [&](double tint) { return std::max(0.0, b * (1 - darkening * tint)); };
+    out.filter = {filter(p.poreTint.r), filter(p.poreTint.g), filter(p.poreTint.b)};
     out.reliefGradient = out.reliefGradient * weight;
     out.pore = pore * weight;
     out.ray = ray * weight;

@@ -265,5 +265,25 @@ TEST_F(Anatomy, PoreTintDarkensEachChannelByItsShare) {
     EXPECT_GT(inPores, 10);
 }
 
+// The strongest texture a grain file can ask for on end grain: cell amplitudes of 0.5 each and
+// pores darkening 1, times 1 + 4 (colour.end_grain texture and contrast at their limit).
+// The filter would go below zero on some 3 % of the face (a negative albedo, found by
+// baking such a grain): it stops at zero.
+TEST_F(Anatomy, TheStrongestTextureAGrainAllowsNeverMakesANegativeFilter) {
+    params_.fibreAmplitude = params_.speckleAmplitude = 0.5 * 5;
+    params_.pores = PoreKind::DiffusePorous;
+    params_.poreDarkening = 1.0 * 5;
+    int zero = 0;
+    for (int a = 0; a < 4000; ++a) {
+        const double r = 0.01 + 0.00002 * a, az = 0.37 * a;
+        const AnatomySample s = at({r * std::cos(az), r * std::sin(az), 0.3});
+        for (double c : {s.filter.r, s.filter.g, s.filter.b}) {
+            EXPECT_GE(c, 0.0);
+            zero += c == 0;
+        }
+    }
+    EXPECT_GT(zero, 0) << "the case reaches the bound";
+}
+
 }  // namespace
 }  // namespace nenrin
