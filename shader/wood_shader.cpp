@@ -163,6 +163,10 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         if (!footprints.empty() && !outside && lengthSquared(footprints[i].normal) > 0)
             o.albedo = endGrainAlbedo(
                 o.albedo, std::abs(dot(normalize(footprints[i].normal), o.fibre)), colour);
+        // A reflectance: the strongest texture a grain allows (end grain multiplies it) and saw
+        // marks could lift a light wood's past 1, a surface giving back more than it gets.
+        o.albedo = {std::min(o.albedo.r, 1.0), std::min(o.albedo.g, 1.0),
+                    std::min(o.albedo.b, 1.0)};
 
         double slope =
             rings_.filteredSlope(profileT, std::max(width * warp, kReliefMinWidth)) * warp;

@@ -162,6 +162,33 @@ TEST_F(StraightTrunkSurface, EndGrainIsDarkerAndRedderThanSideGrain) {
     EXPECT_LT(between.L, flat.L);
 }
 
+TEST_F(StraightTrunkSurface, TheStrongestTextureAGrainAllowsKeepsTheAlbedoAReflectance) {
+    // A light wood with cell amplitudes of 0.5 each and end-grain texture 4 (the parser's
+    // limits): its end grain's albedo once reached 1.76 and went down to -0.70.
+    grain_.colour.earlyWood = grain_.colour.lateWood = {0.9, 0.85, 0.8};
+    grain_.colour.endGrainTexture = 4;
+    grain_.anatomy.enabled = true;
+    grain_.anatomy.fibreAmplitude = grain_.anatomy.speckleAmplitude = 0.5;
+    const GrowthField field(index_, grain_);
+    const WoodShader shader(field);
+    std::vector<Vec3> points;
+    for (int k = 0; k < 4000; ++k)
+        points.push_back(
+            {0.01 + 0.00002 * k * std::cos(0.37 * k), 0.01 + 0.00002 * k * std::sin(0.37 * k), 1});
+    std::vector<SurfaceFootprint> f(points.size(), {{}, {}, 0.0001, {0, 0, 1}});
+    std::vector<WoodSurfaceSample> out(points.size());
+    WoodScratch scratch;
+    shader.evaluateSurface(points, f, out, scratch);
+    int bright = 0;
+    for (const WoodSurfaceSample& o : out)
+        for (double c : {o.albedo.r, o.albedo.g, o.albedo.b}) {
+            EXPECT_GE(c, 0.0);
+            EXPECT_LE(c, 1.0);
+            bright += c == 1.0;
+        }
+    EXPECT_GT(bright, 0) << "the case reaches the bound";
+}
+
 TEST(WoodSurface, FibresBendAroundAKnot) {
     // Beside a horizontal branch the rings wrap around it: the fibre direction there leaves
     // the trunk axis, while far from it it runs straight up.
