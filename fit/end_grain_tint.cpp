@@ -16,16 +16,6 @@ bool isKind(FaceKind kind, std::span<const double> endWeights, size_t face) {
     return kind == FaceKind::Any || (endWeights[face] > 0.5) == (kind == FaceKind::End);
 }
 
-double worstLog(const Rgb& ratio) {
-    return std::max(
-        {std::abs(std::log(ratio.r)), std::abs(std::log(ratio.g)), std::abs(std::log(ratio.b))});
-}
-
-nlohmann::json rgbJson(const Rgb& c) {
-    auto r = [](double v) { return std::round(v * 1e4) / 1e4; };
-    return {r(c.r), r(c.g), r(c.b)};
-}
-
 /// Per channel, the median over the fitted faces of `kind` of each pixel's photographed over
 /// baked colour: the tint's measure, which a stain or a knot's halo covering part of one face
 /// (the hinoki cube's face D) barely moves, where it would move a mean.
@@ -71,6 +61,25 @@ Rgb currentTint(const nlohmann::json& grain) {
 
 }  // namespace
 
+double worstLog(const Rgb& ratio) {
+    return std::max(
+        {std::abs(std::log(ratio.r)), std::abs(std::log(ratio.g)), std::abs(std::log(ratio.b))});
+}
+
+nlohmann::json colourJson(const Rgb& c) {
+    auto r = [](double v) { return std::round(v * 1e4) / 1e4; };
+    return {r(c.r), r(c.g), r(c.b)};
+}
+
+void scaleWoodColours(nlohmann::json& grain, const Rgb& ratio) {
+    for (const char* key : {"early_wood", "late_wood"}) {
+        nlohmann::json& c = grain["colour"][key];
+        c = colourJson({std::min(1.0, c[0].get<double>() * ratio.r),
+                        std::min(1.0, c[1].get<double>() * ratio.g),
+                        std::min(1.0, c[2].get<double>() * ratio.b)});
+    }
+}
+
 Rgb colourRatio(std::span<const FaceFigures> faces, FaceKind kind,
                 std::span<const double> endWeights) {
     double photo[3] = {0, 0, 0}, baked[3] = {0, 0, 0};
@@ -107,17 +116,12 @@ int matchEndGrainTint(nlohmann::json& grain, std::vector<FaceFigures>& faces,
         const Rgb relative{endMedian.r / sideMedian.r, endMedian.g / sideMedian.g,
                            endMedian.b / sideMedian.b};
         if (std::max(worstLog(sideRatio), worstLog(relative)) < 0.005) break;
-        // (Colours are reflectances: at most 1; the tint a factor in [0.05, 1].)
+        // (The tint a factor in [0.05, 1].)
         const Rgb tint = currentTint(grain);
         auto tinted = [](double t, double r) { return std::clamp(t * r, 0.05, 1.0); };
-        grain["colour"]["end_grain"]["tint"] = rgbJson(
+        grain["colour"]["end_grain"]["tint"] = colourJson(
             {tinted(tint.r, relative.r), tinted(tint.g, relative.g), tinted(tint.b, relative.b)});
-        for (const char* key : {"early_wood", "late_wood"}) {
-            nlohmann::json& c = grain["colour"][key];
-            c = rgbJson(Rgb{std::min(1.0, c[0].get<double>() * sideRatio.r),
-                            std::min(1.0, c[1].get<double>() * sideRatio.g),
-                            std::min(1.0, c[2].get<double>() * sideRatio.b)});
-        }
+        scaleWoodColours(grain, sideRatio);
         faces = rebake();
     }
     // One tint for every end face: where they differ among themselves (a stain on one), it

@@ -24,6 +24,16 @@ enum class FaceKind { Any, Side, End };
 Rgb colourRatio(std::span<const FaceFigures> faces, FaceKind kind = FaceKind::Any,
                 std::span<const double> endWeights = {});
 
+/// The largest |log| of a ratio's channels: how far it is from (1, 1, 1).
+double worstLog(const Rgb& ratio);
+
+/// A colour as the fit writes it into a grain: each channel to four decimals.
+nlohmann::json colourJson(const Rgb& c);
+
+/// Scales the grain's early and late wood colours by `ratio`, each channel at most 1 (a
+/// grain's colours are reflectances, however dark the bake).
+void scaleWoodColours(nlohmann::json& grain, const Rgb& ratio);
+
 /// Sets the end-grain tint (and scales the early and late wood) as above, `rounds` times or
 /// until both kinds are within half a percent; `faces` are the bakes of `grain`, `rebake`
 /// bakes them again from it. Kept only if the fitted faces' colours match better: fewer of

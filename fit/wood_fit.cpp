@@ -35,11 +35,6 @@ constexpr double kPoorMisfitDeg = 20, kNoRingsMisfitDeg = 30;
 /// Past this distance the rings are nearly straight: their curvature barely places the pith.
 constexpr double kFarPith = 1.0;
 
-nlohmann::json rgbJson(const Rgb& c) {
-    auto r = [](double v) { return std::round(v * 1e4) / 1e4; };
-    return {r(c.r), r(c.g), r(c.b)};
-}
-
 double rounded(double v, double unit) { return std::round(v / unit) * unit; }
 
 /// A straight trunk along the pith line, far past the sample both ways, born at once (rings
@@ -67,8 +62,8 @@ nlohmann::json fittedGrain(const std::string& base, const Sample& sample,
     grain["radial_speed"] = rounded((b.back() - b.front()) / double(b.size() - 1), 1e-6);
     nlohmann::json& colour = grain["colour"];
     if (!colour.is_object()) colour = nlohmann::json::object();
-    colour["early_wood"] = rgbJson(s.earlyWood);
-    colour["late_wood"] = rgbJson(s.lateWood);
+    colour["early_wood"] = colourJson(s.earlyWood);
+    colour["late_wood"] = colourJson(s.lateWood);
     nlohmann::json shape = nlohmann::json::array();
     for (double e : s.lateWoodProfile) shape.push_back(rounded(e, 1e-3));
     colour["late_wood_profile"] = shape;
@@ -142,16 +137,8 @@ std::vector<FaceFigures> calibrateColours(nlohmann::json& grain, const Skeleton&
         for (const FacePhoto& p : photos)
             faces.push_back(measureFace(shader, skeleton, p, options));
         const Rgb ratio = colourRatio(faces);
-        const double off = std::max({std::abs(std::log(ratio.r)), std::abs(std::log(ratio.g)),
-                                     std::abs(std::log(ratio.b))});
-        if (round == rounds || off < 0.005) return faces;
-        for (const char* key : {"early_wood", "late_wood"}) {
-            nlohmann::json& c = grain["colour"][key];
-            // (A grain's colours are reflectances: at most 1, however dark the bake.)
-            c = rgbJson(Rgb{std::min(1.0, c[0].get<double>() * ratio.r),
-                            std::min(1.0, c[1].get<double>() * ratio.g),
-                            std::min(1.0, c[2].get<double>() * ratio.b)});
-        }
+        if (round == rounds || worstLog(ratio) < 0.005) return faces;
+        scaleWoodColours(grain, ratio);
     }
 }
 
