@@ -146,6 +146,28 @@ TEST(RingStarts, FindsEachRingsEdgeInConifersAndRingPorousWood) {
     }
 }
 
+TEST(RingStarts, DoesNotSplitARingPorousRingAtItsSecondRowOfPores) {
+    // Chestnut's early wood: a dark row of large pores at the ring's start and a fainter
+    // second row halfway through, whose fall is a third of the first's (CN03's profiles
+    // swing twice a ring: its rings were counted 2.3 times over, each fall half a period from
+    // a stronger one making a ring start).
+    const std::vector<int> starts = {10, 52, 95, 128, 175, 214, 262, 300, 335};
+    std::vector<double> L = ringProfile(starts, 340, true);
+    for (size_t k = 0; k + 1 < starts.size(); ++k) {
+        const int second = starts[k] + int(0.5 * (starts[k + 1] - starts[k]));
+        for (int i = second; i < second + 5; ++i) L[size_t(i)] -= 7;
+    }
+    // The profile's swings count half the rings' period, 20 samples, or the whole, 40.
+    for (double period : {20.0, 40.0}) {
+        const std::vector<int> found = ringStarts(L, period);
+        size_t matched = 0;
+        for (int s : std::vector<int>(starts.begin() + 1, starts.end() - 1))
+            for (int f : found) matched += std::abs(f - s) <= 1;
+        EXPECT_EQ(matched, starts.size() - 2) << "period " << period;
+        EXPECT_LE(found.size(), starts.size()) << "period " << period;
+    }
+}
+
 // ---- the round trip ----
 
 /// Six faces of a 5 cm cube baked from a straight trunk 70 mm from the cube's centre,
@@ -414,8 +436,10 @@ TEST(WoodFit, MatchesTheChestnutCubesColourAndFineTextureOnEveryFace) {
     // The figures for the fitted faces: dE*ab at most 5, fine texture 0.7-1.4 x the
     // photo's. With the chestnut preset's strengths face D (end grain, dense pores) measured
     // fine 0.55 and dE 4.6, B fine 0.69 and F dE 5.4; the fitted end-grain tint and texture
-    // strengths bring them in (D 2.2 / 0.81, B 2.7 / 1.02, F 4.3 / 1.00 when written). D's
-    // mid texture stays under the photo's (0.66: its pores' contrast is held at its bound).
+    // strengths bring them in (D 2.2 / 0.81, B 2.7 / 1.02, F 4.3 / 1.00 when written). The
+    // mid texture is looser: since the rings are counted as the photographs show them (10,
+    // not 22), they carry the pore bands' contrast, and the two end faces' own ring contrast
+    // differs by 2 x (one grain: B 1.49, D 0.74, their geometric mean matched).
     SKIP_WITHOUT_MOKUME();
     const Sample sample = loadSampleFile((kMokume / "CN03/sample.json").string());
     const WoodFit fit = fitSample(
@@ -426,7 +450,7 @@ TEST(WoodFit, MatchesTheChestnutCubesColourAndFineTextureOnEveryFace) {
         EXPECT_GE(f.fineRatio, 0.7) << "face " << f.name;
         EXPECT_LE(f.fineRatio, 1.4) << "face " << f.name;
         EXPECT_GE(f.midRatio, 0.6) << "face " << f.name;
-        EXPECT_LE(f.midRatio, 1.45) << "face " << f.name;
+        EXPECT_LE(f.midRatio, 1.55) << "face " << f.name;
     }
     // End grain photographs darker than side grain (Hirata et al. 2020): the fitted tint.
     const ColourParams c = parseGrain(fit.grain, "fitted").colour;
