@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "fit/anatomy_tone.h"
 #include "fit/cross_dating.h"
 #include "fit/end_grain_tint.h"
 #include "fit/knot_colour.h"
@@ -353,6 +354,21 @@ void colourKnots(WoodFit& fit, const std::vector<FacePhoto>& photos, const FitOp
 
 }  // namespace
 
+/// The anatomy's tone out of the chosen grain's ring profile (fit/anatomy_tone.h), and the
+/// colours calibrated again; fit.faces are the bakes of fit.grain before and after.
+void takeOutAnatomyTone(WoodFit& fit, const std::vector<FacePhoto>& photos,
+                        const FitOptions& options) {
+    if (!fit.grain.contains("anatomy")) return;
+    nlohmann::json plain = fit.grain;
+    plain.erase("anatomy");
+    const std::vector<FaceFigures> without =
+        calibrateColours(plain, fit.skeleton, photos, options, 0);
+    const size_t n = fit.grain["colour"].value("late_wood_profile", nlohmann::json::array()).size();
+    fit.anatomyTone = anatomyTone(fit.faces, without, n);
+    if (removeAnatomyTone(fit.grain, fit.anatomyTone))
+        fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, kColourRounds);
+}
+
 WoodFit fitSample(const Sample& sample, const FitOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     checkHeldOut(sample, options);
@@ -428,6 +444,7 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
         if (score < bestScore)
             bestScore = score, fit.grain = grain, fit.faces = faces, fit.base = base;
     }
+    takeOutAnatomyTone(fit, photos, options);
     if (!fit.branches.empty()) {
         sizeKnots(fit, photos, options);
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 0);
@@ -492,6 +509,8 @@ nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
     for (size_t k = 1; k < b.size(); ++k) widths.push_back(rounded(b[k] - b[k - 1], 1e-6));
     nlohmann::json boundaries = nlohmann::json::array();
     for (double r : b) boundaries.push_back(rounded(r, 1e-6));
+    nlohmann::json tone = nlohmann::json::array();
+    for (double t : fit.anatomyTone) tone.push_back(rounded(t, 1e-3));
     return {{"format", "nenrin-fit"},
             {"sample", sample.file},
             {"seconds", rounded(fit.seconds, 0.01)},
@@ -506,6 +525,7 @@ nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
               {"boundary_radii", boundaries},
               {"widths", widths},
               {"late_wood_blur", rounded(fit.profileBlur, 1e-4)},
+              {"anatomy_tone", tone},
               {"inner_radius", fit.profile.innerRadius},
               {"outer_radius", fit.profile.outerRadius}}},
             {"knots", knotsJson},

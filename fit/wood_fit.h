@@ -81,6 +81,9 @@ struct WoodFit {
     RadialRings profile;
     /// Ring phase: the blur the late-wood profile was sharpened by (fit/profile_sharpening.h).
     double profileBlur = 0;
+    /// The anatomy's darkening by ring phase taken out of the late-wood profile
+    /// (fit/anatomy_tone.h); empty without anatomy.
+    std::vector<double> anatomyTone;
     std::vector<KnotBranch> branches;  ///< one per knot (or pair of faces' knots) seen
     Skeleton skeleton;
     nlohmann::json grain;

@@ -436,10 +436,11 @@ TEST(WoodFit, MatchesTheChestnutCubesColourAndFineTextureOnEveryFace) {
     // The figures for the fitted faces: dE*ab at most 5, fine texture 0.7-1.4 x the
     // photo's. With the chestnut preset's strengths face D (end grain, dense pores) measured
     // fine 0.55 and dE 4.6, B fine 0.69 and F dE 5.4; the fitted end-grain tint and texture
-    // strengths bring them in (D 2.2 / 0.81, B 2.7 / 1.02, F 4.3 / 1.00 when written). The
-    // mid texture is looser: since the rings are counted as the photographs show them (10,
-    // not 22), they carry the pore bands' contrast, and the two end faces' own ring contrast
-    // differs by 2 x (one grain: B 1.49, D 0.74, their geometric mean matched).
+    // strengths bring them in (D 2.2 / 0.81, B 2.7 / 1.02, F 4.3 / 1.00 when written). Mid
+    // texture: since the rings are counted as the photographs show them (10, not 22) they
+    // carry the pore bands' contrast, twice over until the anatomy's tone was taken out of the
+    // ring profile (side faces then up to 1.43, F; now 0.83-1.16). The two end faces' own
+    // ring contrast differs by 2 x, which one grain cannot follow (B 1.51, D 0.74).
     SKIP_WITHOUT_MOKUME();
     const Sample sample = loadSampleFile((kMokume / "CN03/sample.json").string());
     const WoodFit fit = fitSample(
@@ -449,8 +450,9 @@ TEST(WoodFit, MatchesTheChestnutCubesColourAndFineTextureOnEveryFace) {
         EXPECT_LE(f.dE, 5) << "face " << f.name;
         EXPECT_GE(f.fineRatio, 0.7) << "face " << f.name;
         EXPECT_LE(f.fineRatio, 1.4) << "face " << f.name;
-        EXPECT_GE(f.midRatio, 0.6) << "face " << f.name;
-        EXPECT_LE(f.midRatio, 1.55) << "face " << f.name;
+        const bool end = f.name == "B" || f.name == "D";
+        EXPECT_GE(f.midRatio, end ? 0.6 : 0.7) << "face " << f.name;
+        EXPECT_LE(f.midRatio, end ? 1.6 : 1.4) << "face " << f.name;
     }
     // End grain photographs darker than side grain (Hirata et al. 2020): the fitted tint.
     const ColourParams c = parseGrain(fit.grain, "fitted").colour;
