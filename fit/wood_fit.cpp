@@ -352,8 +352,6 @@ void colourKnots(WoodFit& fit, const std::vector<FacePhoto>& photos, const FitOp
     fit.knotRings = knotRingContrast(photos, fit.faces);
 }
 
-}  // namespace
-
 /// The anatomy's tone out of the chosen grain's ring profile (fit/anatomy_tone.h), and the
 /// colours calibrated again; fit.faces are the bakes of fit.grain before and after.
 void takeOutAnatomyTone(WoodFit& fit, const std::vector<FacePhoto>& photos,
@@ -368,6 +366,8 @@ void takeOutAnatomyTone(WoodFit& fit, const std::vector<FacePhoto>& photos,
     if (removeAnatomyTone(fit.grain, fit.anatomyTone))
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, kColourRounds);
 }
+
+}  // namespace
 
 WoodFit fitSample(const Sample& sample, const FitOptions& options) {
     const auto start = std::chrono::steady_clock::now();
