@@ -6,6 +6,8 @@ file(GLOB_RECURSE sources
     ${SOURCE_DIR}/shader/*.h ${SOURCE_DIR}/shader/*.cpp
     ${SOURCE_DIR}/renderer/*.h ${SOURCE_DIR}/renderer/*.cpp
     ${SOURCE_DIR}/cli/*.h ${SOURCE_DIR}/cli/*.cpp
+    ${SOURCE_DIR}/fit/*.h ${SOURCE_DIR}/fit/*.cpp
+    ${SOURCE_DIR}/fuzz/*.h ${SOURCE_DIR}/fuzz/*.cpp
     ${SOURCE_DIR}/tests/*.cpp ${SOURCE_DIR}/bench/*.cpp)
 set(bad "")
 foreach(f ${sources})

@@ -15,8 +15,9 @@ struct InputFolder {
     std::string path;
     InputFolder() {
         // tmpfs where there is one: libFuzzer runs thousands of inputs a second.
-        std::filesystem::path base =
-            std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
+        std::filesystem::path base = std::filesystem::is_directory("/dev/shm")
+                                         ? "/dev/shm"
+                                         : std::filesystem::temp_directory_path();
         path = (base / ("nenrin-fuzz-" + std::to_string(getpid()))).string();
         std::filesystem::create_directories(path);
     }

@@ -12,7 +12,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         RingSeriesFile file = readTucsonRwl(fuzz::writeInputFile(data, size, ".rwl"));
         for (const RingSeries& s : file.series)
             for (double w : s.widthsMm)
-                if (!std::isfinite(w) || w < 0) fuzz::fail("a ring width that is not finite and >= 0");
+                if (!std::isfinite(w) || w < 0)
+                    fuzz::fail("a ring width that is not finite and >= 0");
         if (!file.series.empty()) {
             for (double share : latewoodShares(file.series[0], file))
                 if (!std::isfinite(share)) fuzz::fail("a non-finite latewood share");

@@ -14,7 +14,9 @@ namespace nenrin::fuzz {
 
 namespace {
 
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 void check(bool ok, const char* what, const Vec3& p) {
     if (!ok)
@@ -37,8 +39,10 @@ void probeWood(const Skeleton& skeleton, const GrainParams& params) {
     if (skeleton.segments().empty()) return;
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (const SkeletonNode& n : skeleton.nodes()) {
-        lo = {std::min(lo.x, n.position.x), std::min(lo.y, n.position.y), std::min(lo.z, n.position.z)};
-        hi = {std::max(hi.x, n.position.x), std::max(hi.y, n.position.y), std::max(hi.z, n.position.z)};
+        lo = {std::min(lo.x, n.position.x), std::min(lo.y, n.position.y),
+              std::min(lo.z, n.position.z)};
+        hi = {std::max(hi.x, n.position.x), std::max(hi.y, n.position.y),
+              std::max(hi.z, n.position.z)};
     }
     Vec3 margin = (hi - lo) * 0.1 + Vec3{0.05, 0.05, 0.05};
     lo = lo - margin;
