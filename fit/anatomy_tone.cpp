@@ -3,19 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grain/rgb.h"
+
 namespace nenrin {
 
 namespace {
 
 constexpr int kMinPixels = 50;
 
-double luminance(const float* rgb) {
-    return 0.2126 * double(rgb[0]) + 0.7152 * double(rgb[1]) + 0.0722 * double(rgb[2]);
-}
-
-double luminance(const nlohmann::json& rgb) {
-    return 0.2126 * rgb[0].get<double>() + 0.7152 * rgb[1].get<double>() +
-           0.0722 * rgb[2].get<double>();
+Rgb rgbOf(const nlohmann::json& c) {
+    return {c[0].get<double>(), c[1].get<double>(), c[2].get<double>()};
 }
 
 /// The bakes' mean luminance at each of `n` ring phases (the nearest profile sample to
@@ -32,7 +29,7 @@ std::vector<double> phaseLuminance(std::span<const FaceFigures> faces, size_t n,
                 if (!(v[3] > 0) || v[5] > 0.25f || !std::isfinite(v[4])) continue;
                 const double phase = double(v[4]) - std::floor(double(v[4]));
                 const size_t k = std::min(n - 1, size_t(std::lround(phase * double(n - 1))));
-                sum[k] += luminance(v);
+                sum[k] += luminance(Rgb{v[0], v[1], v[2]});
                 ++count[k];
             }
     }
@@ -49,20 +46,17 @@ std::vector<double> anatomyTone(std::span<const FaceFigures> withAnatomy,
     std::vector<int> countWith, countWithout;
     const std::vector<double> with = phaseLuminance(withAnatomy, n, countWith);
     const std::vector<double> plain = phaseLuminance(without, n, countWithout);
+    // Phases enough pixels of both fall in: their ratio, over its mean; the rest stay 1.
+    std::vector<size_t> measured;
     double sum = 0;
-    int kept = 0;
     for (size_t k = 0; k < n; ++k)
         if (countWith[k] >= kMinPixels && countWithout[k] >= kMinPixels && plain[k] > 0 &&
             with[k] > 0) {
-            tone[k] = with[k] / plain[k];
-            sum += tone[k], ++kept;
+            measured.push_back(k);
+            sum += with[k] / plain[k];
         }
-    if (kept == 0) return std::vector<double>(n, 1.0);
-    const double mean = sum / kept;
-    for (size_t k = 0; k < n; ++k)
-        if (countWith[k] >= kMinPixels && countWithout[k] >= kMinPixels && plain[k] > 0 &&
-            with[k] > 0)
-            tone[k] /= mean;
+    const double mean = sum / double(std::max<size_t>(1, measured.size()));
+    for (size_t k : measured) tone[k] = with[k] / plain[k] / mean;
     return tone;
 }
 
@@ -74,7 +68,8 @@ bool removeAnatomyTone(nlohmann::json& grain, std::span<const double> tone) {
         return false;
     nlohmann::json& profile = colour["late_wood_profile"];
     if (profile.size() != tone.size()) return false;
-    const double early = luminance(colour["early_wood"]), late = luminance(colour["late_wood"]);
+    const double early = luminance(rgbOf(colour["early_wood"])),
+                 late = luminance(rgbOf(colour["late_wood"]));
     if (!(std::abs(late - early) > 0.01 * std::max(early, late))) return false;
     for (size_t k = 0; k < tone.size(); ++k) {
         const double e = profile[k].get<double>();
