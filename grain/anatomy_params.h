@@ -42,7 +42,7 @@ struct AnatomyParams {
     PoreKind pores = PoreKind::None;
     double poreDiameter = 0.0002;  ///< m
     double poreSpacing = 0.0008;   ///< m between neighbouring vessels
-    double poreLength = 0.003;     ///< m: one vessel run along the fibre
+    double poreLength = 0.003;     ///< m along the fibre over which a vessel wanders by its radius
     double poreBand = 0.25;        ///< ring-porous: share of the ring (from its start) with pores
     double poreDarkening = 0.45;   ///< relative darkening inside an open pore
     /// Per channel, the share of that darkening: open vessels of oak or chestnut are brown,

