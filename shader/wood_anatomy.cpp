@@ -16,17 +16,12 @@ namespace {
 
 constexpr double kTwoPi = 2 * std::numbers::pi;
 
-/// 1 while the footprint is below a quarter of the feature's cell, 0 from a whole cell on:
+/// 1 while the footprint is below `from` of the feature's cell, 0 from `from` + 0.75 cells on:
 /// past that, the filtered feature is replaced by its mean (neighbours would enter the box).
-double detail(double footprint, double cell) {
-    return 1 - std::clamp((footprint / cell - 0.25) / 0.75, 0.0, 1.0);
-}
-
-/// The same for tubes (vessels, resin canals), whose filtered coverage keeps its mean while
-/// the footprint is below half a cell (tube() takes the neighbouring cells in): they keep
-/// their detail up to half a cell and are gone from 1.25 cells on.
-double tubeDetail(double footprint, double cell) {
-    return 1 - std::clamp((footprint / cell - 0.5) / 0.75, 0.0, 1.0);
+/// Tubes, whose filtered coverage keeps its mean and takes the neighbouring cells in, keep
+/// their detail up to half a cell (from 0.5); the other features up to a quarter.
+double detail(double footprint, double cell, double from = 0.25) {
+    return 1 - std::clamp((footprint / cell - from) / 0.75, 0.0, 1.0);
 }
 
 /// Near a pith (the trunk's, or a branch's inside its knot) the base ray count would crowd
@@ -95,7 +90,7 @@ double wanderAlong(uint64_t seed, uint64_t salt, long long it, long long ir, dou
 /// footprint's area): its coverage at (tPos, rPos); `outward` gets the direction from its axis.
 double vesselInCell(const WoodFrame& f, const TubeCell& c, double tPos, double rPos, long long it,
                     long long row, long long ring, double rw, uint64_t seed, uint64_t salt,
-                    Vec3* outward) {
+                    Vec3& outward) {
     const long long ir = row + ring * 1000003;
     if (cellRandom(seed, salt, it, ir) >= c.probability) return 0;
     // Each vessel its own size and slightly oval section, so they do not read as stamped.
@@ -120,28 +115,33 @@ double vesselInCell(const WoodFrame& f, const TubeCell& c, double tPos, double r
     const double a = std::abs(half - soft), b = half + soft;
     const double height = std::min(1.0, 3 * half * half / (a * a + a * b + b * b));
     const double section = height * std::clamp((b - n) / (b - a), 0.0, 1.0);
-    if (outward && section > 0) {
+    if (section > 0) {
         const double l = std::hypot(dt, dr);
-        *outward = l > 0 ? (f.t * dt + f.r * dr) * (1 / l) : Vec3{};
+        outward = l > 0 ? (f.t * dt + f.r * dr) * (1 / l) : Vec3{};
     }
     return section;
 }
 
-/// The filtered coverage of the tubes at radial position rPos: the point's own cell and,
-/// where a vessel filtered by the footprint could reach over the cell's edge, the neighbours
-/// on that side. `outward` gets the direction from the strongest vessel's axis; `mean` the
-/// coverage's mean over many cells.
-double tube(const WoodFrame& f, const TubeCell& c, double rPos, long long ring, uint64_t seed,
-            uint64_t salt, Vec3* outward, double* mean) {
-    // pi/4 an ellipse in its box, sizes 0.7-1.3 (mean square 1.03): any cut through tubes
-    // covers their share of the volume.
-    *mean = c.probability * 0.785 * 1.03 * (2 * c.half / c.tCell) * (2 * c.half / c.rCell);
+/// What the tubes give at a point: their coverage, faded to its mean as the footprint grows
+/// past half a cell, the slope factor of an open pore's pit, and the direction from the
+/// strongest tube's axis.
+struct TubeSample {
+    double coverage = 0;
+    double pit = 0;
+    Vec3 outward;
+};
+
+/// The tubes at radial position rPos: the point's own cell and, where a vessel filtered by
+/// the footprint could reach over the cell's edge, the neighbours on that side.
+TubeSample tube(const WoodFrame& f, const TubeCell& c, double rPos, long long ring, uint64_t seed,
+                uint64_t salt) {
     const double rw = std::max(f.ft, f.fr) * 0.5642;  // 1 / sqrt(pi): a disc of its area
     // How far past its cell's edge a vessel can reach: wander, the filter, the oval's slack.
     const double reach = rw + (kVesselWander + 0.3) * 1.3 * c.half;
     const double rowPos = rPos / c.rCell;
     const long long row = (long long)std::floor(rowPos);
     const double spill = reach / c.rCell;
+    TubeSample out;
     double cov = 0, strongest = 0;
     for (long long r = row - (rowPos - row < spill); r <= row + (row + 1 - rowPos < spill); ++r) {
         if (c.rows > 0 && (r < 0 || r >= c.rows)) continue;
@@ -154,13 +154,21 @@ double tube(const WoodFrame& f, const TubeCell& c, double rPos, long long ring, 
         for (long long t = col - (colPos - col < tSpill); t <= col + (col + 1 - colPos < tSpill);
              ++t) {
             Vec3 direction;
-            const double v = vesselInCell(f, c, tPos, rPos, t, r, ring, rw, seed, salt,
-                                          outward ? &direction : nullptr);
+            const double v = vesselInCell(f, c, tPos, rPos, t, r, ring, rw, seed, salt, direction);
             cov += v;
-            if (outward && v > strongest) strongest = v, *outward = direction;
+            if (v > strongest) strongest = v, out.outward = direction;
         }
     }
-    return std::min(cov, 1.0);
+    cov = std::min(cov, 1.0);
+    // pi/4 an ellipse in its box, sizes 0.7-1.3 (mean square 1.03): any cut through tubes
+    // covers their share of the volume.
+    const double mean =
+        c.probability * 0.785 * 1.03 * (2 * c.half / c.tCell) * (2 * c.half / c.rCell);
+    const double keep =
+        std::min(detail(std::max(f.ft, f.fr), c.tCell, 0.5), detail(f.fz, c.wander, 0.5));
+    out.coverage = keep * cov + (1 - keep) * mean;
+    out.pit = keep * cov * (1 - cov) * 4;
+    return out;
 }
 
 }  // namespace
@@ -320,14 +328,10 @@ double vessels(const AnatomyParams& p, const WoodFrame& f, double radial, double
         } else if (phase > 0.75) {
             c.probability *= 0.5;  // fewer vessels in the late wood
         }
-        Vec3 outward;
-        double mean = 0;
-        const double cov = tube(f, c, rPos, ring, p.seed, salt, &outward, &mean);
-        const double keep =
-            std::min(tubeDetail(std::max(f.ft, f.fr), p.poreSpacing), tubeDetail(f.fz, c.wander));
-        pore = keep * cov + (1 - keep) * mean;
+        const TubeSample t = tube(f, c, rPos, ring, p.seed, salt);
+        pore = t.coverage;
         // The open pore is a pit: the relief falls towards its axis.
-        relief = outward * (keep * p.poreDepth * cov * (1 - cov) * 4);
+        relief = t.outward * (p.poreDepth * t.pit);
     }
 
     return pore;
@@ -388,11 +392,7 @@ double resinCanals(const AnatomyParams& p, const WoodFrame& f, double radial, do
     if (p.resinSpacing > 0 && phase > 0.55) {
         TubeCell c{p.resinSpacing, p.resinSpacing, 0.02,
                    std::min(0.5 * p.resinDiameter, 0.35 * p.resinSpacing), 0.3};
-        double mean = 0;
-        double cov = tube(f, c, radial, 0, p.seed, 301, nullptr, &mean);
-        const double keep =
-            std::min(tubeDetail(std::max(f.ft, f.fr), p.resinSpacing), tubeDetail(f.fz, c.wander));
-        resin = keep * cov + (1 - keep) * mean;
+        resin = tube(f, c, radial, 0, p.seed, 301).coverage;
     }
 
     return resin;
