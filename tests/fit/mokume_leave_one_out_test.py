@@ -8,13 +8,15 @@ between the photo's ring normals and the fitted field's grad T).
 The issue's goal, a median of at most 8 degrees over each cube's six faces and none over 20,
 is not met yet (docs/fit.md); this test holds the figures reached so that a change cannot lose
 them unseen: per cube, the median and the worst face under the bounds below (today's figures
-plus 1-2 degrees), and prints all twelve.
+plus 1-2 degrees), and prints all twelve; and that each fit's warnings about its pith line
+describe the line it kept.
 
 Usage: mokume_leave_one_out_test.py NENRIN SOURCE_DIR WORK_DIR
 Exit 77 (skipped) when ../shared (the photographs) is not beside the checkout."""
 import concurrent.futures
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -34,7 +36,26 @@ def held_out_figure(nenrin, sample, grain, face, out):
     held = [x for x in report["faces"] if x["held_out"]]
     if [x["name"] for x in held] != [face]:
         raise RuntimeError(f"{out}/fit.json: expected face {face} alone held out")
-    return held[0]["ring_median_deg"]
+    return held[0]["ring_median_deg"], warning_problems(report, out)
+
+
+def warning_problems(report, out):
+    """The pith's warnings describe the line kept: a misfit warning exactly when its misfit is
+    over 20 degrees, a far-pith warning exactly when it lies over 1 m away, each with its
+    figure. (They once judged the first line, before the knots' rings were left out: H11 with
+    D left out warned of a 27.7 degree misfit where the line kept fits to 7.2.)"""
+    pith, problems = report["pith"], []
+    for key, limit, pattern, digits in [
+            ("median_misfit_deg", 20, r"not cylinders around one pith line: median misfit "
+                                      r"([0-9.]+) degrees", 1),
+            ("distance", 1.0, r"the pith lies ([0-9.]+) m away", 2)]:
+        said = [float(m.group(1)) for w in report["warnings"] for m in [re.search(pattern, w)]
+                if m]
+        if (pith[key] > limit) != bool(said):
+            problems.append(f"{out}: pith {key} {pith[key]}, warnings {report['warnings']}")
+        elif said and abs(said[0] - pith[key]) > 0.6 * 10 ** -digits:
+            problems.append(f"{out}: warning says {said[0]}, pith {key} is {pith[key]}")
+    return problems
 
 
 def main(nenrin, source, work):
@@ -53,7 +74,9 @@ def main(nenrin, source, work):
                 jobs[cube, face] = pool.submit(held_out_figure, nenrin, sample, grain, face, out)
     failures = []
     for cube, _, median_bound, worst_bound in CUBES:
-        figures = [jobs[cube, face].result() for face in "ABCDEF"]
+        results = [jobs[cube, face].result() for face in "ABCDEF"]
+        figures = [figure for figure, _ in results]
+        failures += [p for _, problems in results for p in problems]
         median, worst = statistics.median(figures), max(figures)
         print(f"{cube} left out: " + " ".join(f"{face} {v:.1f}" for face, v in
                                                zip("ABCDEF", figures)) +
