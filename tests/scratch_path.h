@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <system_error>
@@ -19,7 +20,8 @@ inline std::filesystem::path scratchPath(const std::string& name) {
 }
 
 /// A fresh, empty folder at scratchPath(name) for one test, removed when it goes out of scope
-/// unless the test has failed by then (then it is kept to look at).
+/// unless the test has failed by then (then it is kept to look at) or NENRIN_KEEP_SCRATCH is
+/// set (to hold a passing run's files beside a failing one's: the fit's synthetic cubes).
 class ScratchFolder {
 public:
     explicit ScratchFolder(const std::string& name) : path_(scratchPath(name)) {
@@ -28,7 +30,8 @@ public:
     }
     ~ScratchFolder() {
         std::error_code ignored;
-        if (!::testing::Test::HasFailure()) std::filesystem::remove_all(path_, ignored);
+        if (!::testing::Test::HasFailure() && !std::getenv("NENRIN_KEEP_SCRATCH"))
+            std::filesystem::remove_all(path_, ignored);
     }
     ScratchFolder(const ScratchFolder&) = delete;
     ScratchFolder& operator=(const ScratchFolder&) = delete;
