@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -130,6 +129,9 @@ private:
     std::vector<ShadowRay> shadows_;   ///< the light samples, in path order
     std::vector<uint8_t> finished_;    ///< the paths that ended
     SharedSurface shared_;             ///< camera samples' shading, shared per pixel and board face
+    /// A vertex's own shading where it shares none: a member, not a local, because a local
+    /// std::optional of it was cleared (232 bytes, rep stos) at every vertex.
+    SurfaceShading ownShading_;
 };
 
 void TileRenderer::render(int x0, int y0, int x1, int y1, Film& film, RenderStats& stats) {
@@ -353,19 +355,18 @@ void TileRenderer::shade(uint32_t index, PathState& path, TileAovs& aovs) {
     const WoodHits::Evaluation evaluation = woodHits_.evaluation(index);
     const SurfaceShading* kept = shareable ? shared_.find(evaluation, ng) : nullptr;
     // Not copied when kept: the state is some 300 bytes, and most camera samples share it.
-    std::optional<SurfaceShading> own;
     if (!kept) {
-        own = materialBsdf(material, {.hit = &path.hit,
-                                      .wo = wo,
-                                      .ns = ns,
-                                      .wood = wood,
-                                      .boardTint = path.boardTint,
-                                      .glue = path.glue,
-                                      .glueCover = path.glueCover,
-                                      .minRoughness = path.minRoughness});
-        if (shareable) shared_.keep(evaluation, ng, *own, scene_.lights.size());
+        ownShading_ = materialBsdf(material, {.hit = &path.hit,
+                                              .wo = wo,
+                                              .ns = ns,
+                                              .wood = wood,
+                                              .boardTint = path.boardTint,
+                                              .glue = path.glue,
+                                              .glueCover = path.glueCover,
+                                              .minRoughness = path.minRoughness});
+        if (shareable) shared_.keep(evaluation, ng, ownShading_, scene_.lights.size());
     }
-    const SurfaceShading& surface = kept ? *kept : *own;
+    const SurfaceShading& surface = kept ? *kept : ownShading_;
     const Vec3 woLocal = surface.frame.toLocal(wo);
 
     if (camera) {
