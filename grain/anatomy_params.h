@@ -19,6 +19,10 @@ enum class PoreKind {
 struct AnatomyParams {
     bool enabled = false;
     uint64_t seed = 1;
+    /// The brightness changes below taken along the wood's own colour line (darker = more
+    /// saturated, as late wood against early wood) instead of grey; luminance as grey
+    /// (shader/colour_line.h).
+    bool colourLine = false;
     /// Fibre streaks: brightness noise drawn out along the fibre.
     double fibreAmplitude = 0.05;  ///< relative brightness (+-)
     double fibreWidth = 0.0004;    ///< m across the fibre

@@ -129,6 +129,7 @@ void readRingModel(JsonReader& r, RingModelParams& m) {
 void readAnatomy(JsonReader& a, AnatomyParams& m) {
     m.enabled = a.boolean("enabled", true);
     m.seed = static_cast<uint64_t>(a.integer("seed", 1, 0, 1LL << 53));
+    m.colourLine = a.boolean("colour_line", m.colourLine);
     if (auto f = a.object("fibres")) {
         m.fibreAmplitude = f->inRange("amplitude", m.fibreAmplitude, 0, 0.5);
         m.fibreWidth = f->inRange("width", m.fibreWidth, 1e-5, 0.01);
@@ -313,7 +314,7 @@ nlohmann::json colourJson(const ColourParams& c) {
 /// The "anatomy" object of a grain file.
 nlohmann::json anatomyJson(const AnatomyParams& m) {
     const char* kinds[] = {"none", "ring-porous", "diffuse-porous"};
-    return {
+    nlohmann::json j = {
         {"enabled", true},
         {"seed", m.seed},
         {"fibres",
@@ -344,6 +345,9 @@ nlohmann::json anatomyJson(const AnatomyParams& m) {
          {{"spacing", m.resinSpacing},
           {"diameter", m.resinDiameter},
           {"darkening", m.resinDarkening}}}};
+    // Written only when on: grain files written before it stay as they were.
+    if (m.colourLine) j["colour_line"] = true;
+    return j;
 }
 
 }  // namespace

@@ -19,10 +19,12 @@
 namespace nenrin {
 
 struct AnatomySample {
-    Rgb filter{1, 1, 1};  ///< multiplies the albedo
-    Vec3 reliefGradient;  ///< added to the relief gradient (pits of open pores), tree space
-    double pore = 0;      ///< pore coverage 0..1 (for tests and AOVs)
-    double ray = 0;       ///< ray coverage 0..1
+    Rgb filter{1, 1, 1};    ///< multiplies the albedo: brightness x pores, each at least 0
+    double brightness = 1;  ///< the cells', streaks', rings' tones', rays' and resin's factor
+    Rgb pores{1, 1, 1};     ///< the open vessels' darkening, per channel (their tint)
+    Vec3 reliefGradient;    ///< added to the relief gradient (pits of open pores), tree space
+    double pore = 0;        ///< pore coverage 0..1 (for tests and AOVs)
+    double ray = 0;         ///< ray coverage 0..1
 };
 
 /// `gradT` is grad T at the point (years/m); `dpdx`, `dpdy` the pixel's footprint on the

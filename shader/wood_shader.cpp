@@ -6,6 +6,7 @@
 #include "grain/growth_terms.h"
 #include "grain/wood_colour.h"
 #include "shader/bark.h"
+#include "shader/colour_line.h"
 #include "shader/saw_marks.h"
 #include "shader/wood_anatomy.h"
 
@@ -29,7 +30,11 @@ WoodShader::WoodShader(const GrowthField& field, Finish finish)
     : field_(&field),
       finish_(std::move(finish)),
       rings_(lateWoodShape(field.params().colour)),
-      gradientStep_(std::max(1e-6, 0.02 * field.params().radialSpeed)) {}
+      gradientStep_(std::max(1e-6, 0.02 * field.params().radialSpeed)),
+      colourLine_(
+          field.params().anatomy.colourLine
+              ? woodColourLine(field.params().colour.earlyWood, field.params().colour.lateWood)
+              : Rgb{1, 1, 1}) {}
 
 void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample> out,
                           GrowthScratch& scratch, std::vector<GrowthSample>& samples) const {
@@ -67,12 +72,12 @@ Vec3 WoodShader::applyAnatomy(const GrowthSample& s, const Vec3& point, const Su
     const double inKnot = knotted ? smoothstep(0.3, 0.6, s.knot) : 0.0;
     AnatomySample a =
         woodAnatomy(anatomy, s, point, o.gradientT, f.dpdx, f.dpdy, f.diameter, 1 - inKnot);
-    o.albedo = multiply(o.albedo, a.filter);
+    o.albedo = alongColourLine(o.albedo, a.brightness, colourLine_, a.pores);
     Vec3 relief = a.reliefGradient;
     if (inKnot > 0) {
         AnatomySample k = woodAnatomy(anatomy, {s.knotOffset, s.knotAxisDirection}, s.T, point,
                                       o.gradientT, f.dpdx, f.dpdy, f.diameter, inKnot);
-        o.albedo = multiply(o.albedo, k.filter);
+        o.albedo = alongColourLine(o.albedo, k.brightness, colourLine_, k.pores);
         relief = relief + k.reliefGradient;
     }
     return relief;

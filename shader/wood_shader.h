@@ -93,6 +93,7 @@ private:
     Finish finish_;
     RingProfile rings_;
     double gradientStep_;  ///< of the forward differences for grad T (m): 2 % of a ring
+    Rgb colourLine_;       ///< the anatomy's tones are taken along it (shader/colour_line.h)
 };
 
 }  // namespace nenrin
