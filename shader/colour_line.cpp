@@ -19,10 +19,10 @@ Rgb woodColourLine(const Rgb& earlyWood, const Rgb& lateWood) {
     return {channel(d.r), channel(d.g), channel(d.b)};
 }
 
-Rgb alongColourLine(const Rgb& albedo, double b, const Rgb& line, const Rgb& after) {
-    if (line.r == 1 && line.g == 1 && line.b == 1)
-        return {albedo.r * std::max(0.0, b * after.r), albedo.g * std::max(0.0, b * after.g),
-                albedo.b * std::max(0.0, b * after.b)};
+Rgb alongColourLine(const Rgb& albedo, const AnatomySample& anatomy, const Rgb& line) {
+    if (line.r == 1 && line.g == 1 && line.b == 1) return multiply(albedo, anatomy.filter());
+    const double b = anatomy.brightness;
+    const Rgb& after = anatomy.pores;
     const double y = luminance(albedo), yLine = luminance(multiply(albedo, line));
     const double s = yLine > 0 ? y / yLine : 1;
     auto factor = [&](double c, double l, double a) {

@@ -8,6 +8,7 @@
 /// stays as it was.
 
 #include "grain/rgb.h"
+#include "shader/wood_anatomy.h"
 
 namespace nenrin {
 
@@ -16,9 +17,9 @@ namespace nenrin {
 /// where late and early wood hardly differ in luminance.
 Rgb woodColourLine(const Rgb& earlyWood, const Rgb& lateWood);
 
-/// `albedo` under a brightness factor b taken along `line` (per channel 1 + (b - 1) s line,
-/// s setting the luminance to b times the albedo's), then times `after` per channel, each
-/// channel's factor at least 0. With a grey line exactly albedo x max(0, b x after).
-Rgb alongColourLine(const Rgb& albedo, double b, const Rgb& line, const Rgb& after);
+/// `albedo` under the anatomy's brightness b taken along `line` (per channel 1 + (b - 1) s
+/// line, s setting the luminance to b times the albedo's), then its pores' darkening, each
+/// channel's factor at least 0. With a grey line exactly albedo x anatomy.filter().
+Rgb alongColourLine(const Rgb& albedo, const AnatomySample& anatomy, const Rgb& line);
 
 }  // namespace nenrin

@@ -416,13 +416,9 @@ AnatomySample woodAnatomy(const AnatomyParams& p, const AnatomyAxis& axis, doubl
     const double b = (1 + weight * fibre) * (1 + weight * p.rayContrast * ray) *
                      (1 - weight * p.resinDarkening * resin);
     const double darkening = weight * p.poreDarkening * pore;
-    // The parser bounds each strength, but end grain multiplies them (up to 5 x): strong
-    // noise or deep pores could take the filter, and the albedo, below zero.
     out.brightness = b;
     out.pores = {1 - darkening * p.poreTint.r, 1 - darkening * p.poreTint.g,
                  1 - darkening * p.poreTint.b};
-    auto filter = [&](double pore) { return std::max(0.0, b * pore); };
-    out.filter = {filter(out.pores.r), filter(out.pores.g), filter(out.pores.b)};
     out.reliefGradient = out.reliefGradient * weight;
     out.pore = pore * weight;
     out.ray = ray * weight;

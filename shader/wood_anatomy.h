@@ -12,6 +12,8 @@
 /// the footprint reaches half their spacing: a vessel smaller than a pixel still darkens it by
 /// its share. Point samples (footprint 0) draw the features sharp.
 
+#include <algorithm>
+
 #include "grain/anatomy_params.h"
 #include "grain/growth_field.h"
 #include "grain/rgb.h"
@@ -19,12 +21,19 @@
 namespace nenrin {
 
 struct AnatomySample {
-    Rgb filter{1, 1, 1};    ///< multiplies the albedo: brightness x pores, each at least 0
     double brightness = 1;  ///< the cells', streaks', rings' tones', rays' and resin's factor
     Rgb pores{1, 1, 1};     ///< the open vessels' darkening, per channel (their tint)
     Vec3 reliefGradient;    ///< added to the relief gradient (pits of open pores), tree space
     double pore = 0;        ///< pore coverage 0..1 (for tests and AOVs)
     double ray = 0;         ///< ray coverage 0..1
+    /// What multiplies the albedo with the tones grey: brightness x pores, each channel at
+    /// least 0 (the parser bounds each strength, but end grain multiplies them up to 5 x:
+    /// strong noise or deep pores could take it below zero). shader/colour_line.h takes the
+    /// tones along the wood's colour line instead.
+    Rgb filter() const {
+        return {std::max(0.0, brightness * pores.r), std::max(0.0, brightness * pores.g),
+                std::max(0.0, brightness * pores.b)};
+    }
 };
 
 /// `gradT` is grad T at the point (years/m); `dpdx`, `dpdy` the pixel's footprint on the

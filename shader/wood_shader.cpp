@@ -72,12 +72,12 @@ Vec3 WoodShader::applyAnatomy(const GrowthSample& s, const Vec3& point, const Su
     const double inKnot = knotted ? smoothstep(0.3, 0.6, s.knot) : 0.0;
     AnatomySample a =
         woodAnatomy(anatomy, s, point, o.gradientT, f.dpdx, f.dpdy, f.diameter, 1 - inKnot);
-    o.albedo = alongColourLine(o.albedo, a.brightness, colourLine_, a.pores);
+    o.albedo = alongColourLine(o.albedo, a, colourLine_);
     Vec3 relief = a.reliefGradient;
     if (inKnot > 0) {
         AnatomySample k = woodAnatomy(anatomy, {s.knotOffset, s.knotAxisDirection}, s.T, point,
                                       o.gradientT, f.dpdx, f.dpdy, f.diameter, inKnot);
-        o.albedo = alongColourLine(o.albedo, k.brightness, colourLine_, k.pores);
+        o.albedo = alongColourLine(o.albedo, k, colourLine_);
         relief = relief + k.reliefGradient;
     }
     return relief;

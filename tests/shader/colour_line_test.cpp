@@ -50,7 +50,9 @@ TEST(ColourLine, KeepsTheLuminanceOfTheGreyChangeAndSaturatesDarkerWood) {
     for (int i = 0; i < 1000; ++i) {
         const Rgb albedo{channel(random), channel(random), channel(random)};
         const double b = brightness(random);
-        const Rgb toned = alongColourLine(albedo, b, line, {1, 1, 1});
+        AnatomySample a;
+        a.brightness = b;
+        const Rgb toned = alongColourLine(albedo, a, line);
         EXPECT_NEAR(luminance(toned), b * luminance(albedo), 1e-12) << i;
         // Darker: blue falls further than red (the wood's own hue deepens), lighter the reverse.
         const double warmer = (toned.r / toned.b) / (albedo.r / albedo.b);
@@ -62,7 +64,10 @@ TEST(ColourLine, KeepsTheLuminanceOfTheGreyChangeAndSaturatesDarkerWood) {
 TEST(ColourLine, AGreyLineIsTheGreyFilterBitForBit) {
     const Rgb albedo{0.7, 0.45, 0.3}, pores{0.6, 0.7, 0.8};
     for (double b : {0.0, 0.5, 1.0, 1.3, -0.2}) {
-        const Rgb toned = alongColourLine(albedo, b, {1, 1, 1}, pores);
+        AnatomySample a;
+        a.brightness = b;
+        a.pores = pores;
+        const Rgb toned = alongColourLine(albedo, a, {1, 1, 1});
         EXPECT_EQ(toned.r, albedo.r * std::max(0.0, b * pores.r));
         EXPECT_EQ(toned.g, albedo.g * std::max(0.0, b * pores.g));
         EXPECT_EQ(toned.b, albedo.b * std::max(0.0, b * pores.b));

@@ -188,12 +188,12 @@ TEST_F(Anatomy, WideFootprintsGiveTheMeanOfTheSharpFeatures) {
         for (int k = 0; k < 200; ++k) {
             double r = 0.05 + 0.00002 * k, az = 0.002 * a;
             Vec3 p{r * std::cos(az), r * std::sin(az), 0.3 + 0.00003 * a};
-            sharp += at(p).filter.r;
+            sharp += at(p).filter().r;
             ++n;
         }
     for (int k = 0; k < 50; ++k) {
         double r = 0.05 + 0.00008 * k;
-        wide += at({r, 0, 0.3 + 0.0001 * k}, 0.02).filter.r;
+        wide += at({r, 0, 0.3 + 0.0001 * k}, 0.02).filter().r;
     }
     EXPECT_NEAR(wide / 50, sharp / n, 0.003);
     EXPECT_LT(sharp / n, 0.999);  // the features darken on average
@@ -275,7 +275,7 @@ TEST_F(Anatomy, EndGrainCellsAndVesselsAreRoundAtEveryAzimuth) {
     params_.speckleAmplitude = 0.3;
     params_.speckleSize = params_.speckleRadial = 0.0002;
     for (double azimuth : {0.3, 1.5, 2.8})
-        EXPECT_LT(endGrainAnisotropy(azimuth, [&](const Vec3& p) { return at(p).filter.r; }), 1.6)
+        EXPECT_LT(endGrainAnisotropy(azimuth, [&](const Vec3& p) { return at(p).filter().r; }), 1.6)
             << "speckle at azimuth " << azimuth;
     params_.speckleAmplitude = 0;
     params_.pores = PoreKind::DiffusePorous;
@@ -303,9 +303,9 @@ TEST_F(Anatomy, PoreTintDarkensEachChannelByItsShare) {
         if (s.pore < 0.5) continue;
         ++inPores;
         // 1 - filter is the darkening each channel gets: in the tint's proportions.
-        EXPECT_NEAR((1 - s.filter.r) / (1 - s.filter.b), 0.4, 1e-9);
-        EXPECT_NEAR((1 - s.filter.g) / (1 - s.filter.b), 0.7, 1e-9);
-        EXPECT_NEAR(1 - s.filter.b, 0.8 * s.pore, 1e-9);
+        EXPECT_NEAR((1 - s.filter().r) / (1 - s.filter().b), 0.4, 1e-9);
+        EXPECT_NEAR((1 - s.filter().g) / (1 - s.filter().b), 0.7, 1e-9);
+        EXPECT_NEAR(1 - s.filter().b, 0.8 * s.pore, 1e-9);
     }
     EXPECT_GT(inPores, 10);
 }
@@ -322,7 +322,7 @@ TEST_F(Anatomy, TheStrongestTextureAGrainAllowsNeverMakesANegativeFilter) {
     for (int a = 0; a < 4000; ++a) {
         const double r = 0.01 + 0.00002 * a, az = 0.37 * a;
         const AnatomySample s = at({r * std::cos(az), r * std::sin(az), 0.3});
-        for (double c : {s.filter.r, s.filter.g, s.filter.b}) {
+        for (double c : {s.filter().r, s.filter().g, s.filter().b}) {
             EXPECT_GE(c, 0.0);
             zero += c == 0;
         }
