@@ -106,6 +106,9 @@ GrowthField::GrowthField(const SkeletonIndex& index, const GrainParams& params)
     sway_ = makeSwayWaves(params_.sway);
     segments_ = flattenSegments(index.skeleton());
     for (FieldSegment& f : segments_) f.inverseSpeed = 1 / (params_.radialSpeed * f.gamma);
+    if (sway_.radialJitter != 0)
+        for (const FieldSegment& f : segments_) swayFrames_.push_back(swayFrame(f.axis));
+    taperLogOmega_ = std::log(params_.taper.omega);
     const Skeleton& sk = index.skeleton();
     chainTrees_ = ChainTrees(segments_, sk.chains(), index.backend() != IndexBackend::BruteForce);
     for (const SkeletonChain& c : sk.chains()) {

@@ -130,7 +130,7 @@ private:
     /// Its thickening time Tb (eq. 3/3', 7-9, the radial jitter and the ring series) at
     /// distance `distance` = |d| from the axis point where the elongation time is Ta; with
     /// plainThickening_, distance x s.inverseSpeed.
-    double thickening(const FieldSegment& s, double Ta, const Vec3& d, double distance) const;
+    double thickening(uint32_t segment, double Ta, const Vec3& d, double distance) const;
     /// Radius (m) on the ray from the segment's axis through P (Ta, Tb and distance:
     /// segmentPathTime's at P) at which its path time, before dieback, is `time`: path times
     /// scale with distance along such a ray through the radial growth and the age warp only,
@@ -186,7 +186,11 @@ private:
     GrainParams params_;
     SwayWaves sway_;
     std::vector<FieldSegment> segments_;  ///< the skeleton's segments, flattened
-    ChainTrees chainTrees_;               ///< each chain's nearest-segment hierarchy
+    /// Per segment, the plane its radial jitter's azimuth is measured in (empty without
+    /// jitter): the same for every point of the segment, so made once.
+    std::vector<SwayFrame> swayFrames_;
+    double taperLogOmega_;   ///< ln(omega) of eq. 9: omega^Ta as exp(Ta ln omega)
+    ChainTrees chainTrees_;  ///< each chain's nearest-segment hierarchy
     /// Per chain: Q and the normal of plane F (eq. 5), and bounds over all its segments.
     struct ChainFrame {
         Vec3 start, direction;

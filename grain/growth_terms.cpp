@@ -11,22 +11,57 @@ namespace nenrin {
 
 namespace {
 
+/// x less the nearest multiple k pi of pi (k's parity in `odd`): in [-pi/2, pi/2].
+inline double reduceByPi(double x, bool& odd) {
+    constexpr double kInvPi = 1 / std::numbers::pi;
+    constexpr double kPiHi = 3.141592653589793116;  // pi split in two for an exact reduction
+    constexpr double kPiLo = 1.2246467991473532e-16;
+    const double y = x * kInvPi;
+    // The nearest integer by adding and taking away 1.5 x 2^52 (the baseline x86-64 build has
+    // no rounding instruction, and floor was a fifth of the sines' cost); floor beyond 2^51.
+    constexpr double kRound = 0x1.8p52;
+    const double k = std::abs(y) < 0x1p51 ? (y + kRound) - kRound : std::floor(y + 0.5);
+    odd = std::abs(k) < 0x1p62 && (static_cast<long long>(k) & 1);
+    return (x - k * kPiHi) - k * kPiLo;
+}
+
 /// sin(x) to 6e-8 (Taylor to x^11 on [-pi/2, pi/2] after reducing by multiples of pi), for
 /// the sway waves: they are a perturbation of a few millimetres, evaluated several times per
 /// field sample, and libm's sin was the largest single cost of shading wood. The reduction is
 /// exact at the seams (the polynomial is odd), so the waves stay continuous.
 inline double swaySin(double x) {
-    constexpr double kInvPi = 1 / std::numbers::pi;
-    constexpr double kPiHi = 3.141592653589793116;  // pi split in two for an exact reduction
-    constexpr double kPiLo = 1.2246467991473532e-16;
-    double k = std::floor(x * kInvPi + 0.5);
-    double r = (x - k * kPiHi) - k * kPiLo;
+    bool odd;
+    double r = reduceByPi(x, odd);
     double r2 = r * r;
     double s =
         r * (1 + r2 * (-1.0 / 6 +
                        r2 * (1.0 / 120 +
                              r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 + r2 * (-1.0 / 39916800))))));
-    return static_cast<long long>(k) & 1 ? -s : s;
+    return odd ? -s : s;
+}
+
+struct SinCos {
+    double sin, cos;
+};
+
+/// sin(x) and cos(x) to 7e-10 with swaySin's reduction (Taylor to x^13 and x^14), for the
+/// phases of the radial factor's harmonics.
+inline SinCos swaySinCos(double x) {
+    bool odd;
+    double r = reduceByPi(x, odd);
+    double r2 = r * r;
+    double s =
+        r * (1 + r2 * (-1.0 / 6 +
+                       r2 * (1.0 / 120 +
+                             r2 * (-1.0 / 5040 + r2 * (1.0 / 362880 + r2 * (-1.0 / 39916800 +
+                                                                            r2 / 6227020800.0))))));
+    double c =
+        1 + r2 * (-1.0 / 2 +
+                  r2 * (1.0 / 24 +
+                        r2 * (-1.0 / 720 + r2 * (1.0 / 40320 + r2 * (-1.0 / 3628800 +
+                                                                     r2 * (1.0 / 479001600 -
+                                                                           r2 / 87178291200.0))))));
+    return odd ? SinCos{-s, -c} : SinCos{s, c};
 }
 
 }  // namespace
@@ -93,21 +128,46 @@ Vec3 swayDisplacement(const Vec3& p, const SwayWaves& w) {
     return Vec3{c[0], c[1], c[2]} * w.amplitude;
 }
 
-double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elongationYears,
-                        const SwayWaves& w) {
-    if (w.radialJitter == 0) return 1;
+SwayFrame swayFrame(const Vec3& axis) {
     // Azimuth about the axis, measured from world X projected onto the normal plane (world Y
     // for axes close to X), so it varies smoothly along a smoothly bending axis.
     Vec3 ref = std::abs(axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
     Vec3 u = normalize(ref - axis * dot(ref, axis));
-    Vec3 v = cross(axis, u);
-    double az = std::atan2(dot(outwardNormal, v), dot(outwardNormal, u));
+    return {u, cross(axis, u)};
+}
+
+double swayRadialFactor(const Vec3& outwardNormal, const SwayFrame& frame, double elongationYears,
+                        const SwayWaves& w) {
+    if (w.radialJitter == 0) return 1;
     constexpr double norm = 1.0 + 1.0 / 2 + 1.0 / 3;
+    const double x = dot(outwardNormal, frame.u), y = dot(outwardNormal, frame.v);
+    const double r2 = x * x + y * y;
     double h = 0;
-    for (int i = 0; i < SwayWaves::kWaves; ++i)
-        h +=
-            swaySin((i + 1) * az + w.radialPhase[i] + w.radialDrift[i] * elongationYears) / (i + 1);
+    if (!(r2 > 0)) {
+        // The normal along the axis: no azimuth but atan2's for a zero vector.
+        const double az = std::atan2(y, x);
+        for (int i = 0; i < SwayWaves::kWaves; ++i)
+            h += swaySin((i + 1) * az + w.radialPhase[i] + w.radialDrift[i] * elongationYears) /
+                 (i + 1);
+        return 1 + w.radialJitter * h / norm;
+    }
+    // sin(k az + psi_k) = sin(k az) cos(psi_k) + cos(k az) sin(psi_k), the harmonics of az
+    // from its cosine and sine by the angle sums: no atan2, one sine and cosine per harmonic.
+    const double inv = 1 / std::sqrt(r2);
+    const double c1 = x * inv, s1 = y * inv;
+    const double c2 = c1 * c1 - s1 * s1, s2 = 2 * s1 * c1;
+    const double ck[SwayWaves::kWaves] = {c1, c2, c1 * c2 - s1 * s2};
+    const double sk[SwayWaves::kWaves] = {s1, s2, s1 * c2 + c1 * s2};
+    for (int i = 0; i < SwayWaves::kWaves; ++i) {
+        const SinCos psi = swaySinCos(w.radialPhase[i] + w.radialDrift[i] * elongationYears);
+        h += (sk[i] * psi.cos + ck[i] * psi.sin) / (i + 1);
+    }
     return 1 + w.radialJitter * h / norm;
+}
+
+double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elongationYears,
+                        const SwayWaves& w) {
+    return swayRadialFactor(outwardNormal, swayFrame(axis), elongationYears, w);
 }
 
 double microStructure(const Vec3& p, double cellSize, uint64_t seed) {

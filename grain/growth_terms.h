@@ -53,6 +53,12 @@ inline double taperFactor(double elongationYears, double nu, double omega) {
     return nu == 0.0 ? 1.0 : 1.0 + nu * std::pow(omega, std::max(elongationYears, 0.0));
 }
 
+/// taperFactor with ln(omega) given: omega^Ta as exp(Ta ln omega), half pow's cost where the
+/// field makes ln(omega) once (equal to pow's to an ulp or two).
+inline double taperFactorFromLog(double elongationYears, double nu, double logOmega) {
+    return nu == 0.0 ? 1.0 : 1.0 + nu * std::exp(std::max(elongationYears, 0.0) * logOmega);
+}
+
 /// Eq. 10: dieback. After the branch dies at Tlim it stops thickening: its path time grows
 /// steeply, T' = T (T / Tlim)^eps, so the trunk overgrows it and the knot stops widening.
 inline double dieback(double t, double deathTime, double eps) {
@@ -207,6 +213,14 @@ Vec3 swayDisplacement(const Vec3& p, const SwayWaves& waves);
 /// azimuth is that of the outward normal about the skeleton axis, so rings become gently lobed
 /// and the lobes drift along the trunk.
 double swayRadialFactor(const Vec3& outwardNormal, const Vec3& axis, double elongationYears,
+                        const SwayWaves& waves);
+/// The plane the azimuth is measured in: two unit vectors square to the axis. The field keeps
+/// one per segment (the same for every point of it).
+struct SwayFrame {
+    Vec3 u, v;
+};
+SwayFrame swayFrame(const Vec3& axis);
+double swayRadialFactor(const Vec3& outwardNormal, const SwayFrame& frame, double elongationYears,
                         const SwayWaves& waves);
 
 /// Section 4.6: micro-structure. A 16 x 16 table of seeded brightness offsets in [-1, 1], tiled

@@ -13,16 +13,16 @@
 
 namespace nenrin {
 
-double GrowthField::thickening(const FieldSegment& s, double Ta, const Vec3& d,
-                               double distance) const {
+double GrowthField::thickening(uint32_t segment, double Ta, const Vec3& d, double distance) const {
     // Eq. 3/3': Tb = Db / S with S = Sb gamma (x taper, x direction).
+    const FieldSegment& s = segments_[segment];
     double db = distance;
-    double speedFactor = taperFactor(Ta, params_.taper.nu, params_.taper.omega);
+    double speedFactor = taperFactorFromLog(Ta, params_.taper.nu, taperLogOmega_);
     // The outward normal only matters to the direction term and the radial jitter.
     if (params_.direction.strength != 0 || sway_.radialJitter != 0) {
         Vec3 n = distance > 0 ? d * (1 / distance) : Vec3{};
         speedFactor *= directionFactor(n, params_.direction.sunRay, params_.direction.strength);
-        if (sway_.radialJitter != 0) db *= swayRadialFactor(n, s.axis, Ta, sway_);
+        if (sway_.radialJitter != 0) db *= swayRadialFactor(n, swayFrames_[segment], Ta, sway_);
     }
     double Tb = ageWarp(thickeningTime(db, s.inverseSpeed, speedFactor), params_.age.delta);
     if (!radialGrowth_.empty()) Tb = radialGrowth_.arrivalTime(Ta, Tb) - Ta;

@@ -18,7 +18,8 @@ inline GrowthField::PathTime GrowthField::segmentPathTime(uint32_t segmentId, co
     r.Ta = elongationTime(s.birthA, s.birthDelta, t);  // eq. 2
     Vec3 d = p - r.axisPoint;
     r.distance = length(d);
-    r.Tb = plainThickening_ ? r.distance * s.inverseSpeed : thickening(s, r.Ta, d, r.distance);
+    r.Tb =
+        plainThickening_ ? r.distance * s.inverseSpeed : thickening(segmentId, r.Ta, d, r.distance);
     r.T = r.Ta + r.Tb;
     if (s.branch) r.T = dieback(r.T, s.deathTime, s.diebackExponent);
     return r;

@@ -150,9 +150,9 @@ double GrowthField::evaluateTrunk(std::span<const Vec3> points, const PointBox& 
             for (size_t i = c0, k = 0; i < c1; ++i, ++k) {
                 const Vec3 axisPoint{lanes.ax[k], lanes.ay[k], lanes.az[k]};
                 const double Ta = lanes.Ta[k], distance = lanes.distance[k];
-                const double Tb = plainThickening_
-                                      ? distance * s.inverseSpeed
-                                      : thickening(s, Ta, points[i] - axisPoint, distance);
+                const double Tb = plainThickening_ ? distance * s.inverseSpeed
+                                                   : thickening(static_cast<uint32_t>(plain), Ta,
+                                                                points[i] - axisPoint, distance);
                 setTrunkSample(out[i], {Ta + Tb, Ta, Tb, axisPoint, s.axis, distance});
                 maxTrunkTime = std::max(maxTrunkTime, out[i].T);
             }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <utility>
 
@@ -192,6 +194,41 @@ TEST(GrowthTerms, SwayIsBoundedSeededAndSmooth) {
     SwayWaves none = makeSwayWaves(SwayParams{});
     EXPECT_EQ(swayDisplacement(p, none), Vec3{});
     EXPECT_EQ(swayRadialFactor({1, 0, 0}, {0, 0, 1}, 5, none), 1.0);
+}
+
+TEST(GrowthTerms, RadialJitterIsItsThreeHarmonicsOfTheAzimuth) {
+    // Section 4.5's second method written out with libm: 1 + jitter sum_k sin(k az + phase_k +
+    // drift_k Ta) / k / (1 + 1/2 + 1/3), az the normal's azimuth about the axis. The field takes
+    // the harmonics by angle sums from a per-segment frame, without atan2.
+    SwayParams sway;
+    sway.radialJitter = 0.08;
+    sway.seed = 5;
+    const SwayWaves waves = makeSwayWaves(sway);
+    double worst = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const double a = 0.37 * i, b = 0.011 * i * i;
+        const Vec3 axis = normalize(Vec3{std::sin(a) * 0.6, std::cos(b) * 0.5, 1.0 - 0.002 * i});
+        const Vec3 n = normalize(Vec3{std::cos(1.3 * i), std::sin(0.7 * i), std::sin(2.1 * i)});
+        const double ta = 0.05 * i;
+        const SwayFrame f = swayFrame(axis);
+        EXPECT_NEAR(dot(f.u, axis), 0, 1e-15);
+        EXPECT_NEAR(dot(f.v, axis), 0, 1e-15);
+        const double az = std::atan2(dot(n, f.v), dot(n, f.u));
+        double h = 0;
+        for (int k = 0; k < SwayWaves::kWaves; ++k)
+            h +=
+                std::sin((k + 1) * az + waves.radialPhase[k] + waves.radialDrift[k] * ta) / (k + 1);
+        const double expected = 1 + sway.radialJitter * h / (1.0 + 1.0 / 2 + 1.0 / 3);
+        worst = std::max(worst, std::abs(swayRadialFactor(n, f, ta, waves) - expected));
+        EXPECT_EQ(swayRadialFactor(n, axis, ta, waves), swayRadialFactor(n, f, ta, waves));
+    }
+    EXPECT_LT(worst, 1e-10);  // the sines to 7e-10, times jitter / (1 + 1/2 + 1/3)
+    // A normal along the axis has no azimuth: atan2(0, 0) = 0's value, finite.
+    const double along = swayRadialFactor({0, 0, 1}, Vec3{0, 0, 1}, 3, waves);
+    double h0 = 0;
+    for (int k = 0; k < SwayWaves::kWaves; ++k)
+        h0 += std::sin(waves.radialPhase[k] + waves.radialDrift[k] * 3) / (k + 1);
+    EXPECT_NEAR(along, 1 + sway.radialJitter * h0 / (1.0 + 1.0 / 2 + 1.0 / 3), 1e-7);
 }
 
 TEST(GrowthTerms, MicroStructureTilesEvery16CellsAndIgnoresHeight) {

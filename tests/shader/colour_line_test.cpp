@@ -56,8 +56,12 @@ TEST(ColourLine, KeepsTheLuminanceOfTheGreyChangeAndSaturatesDarkerWood) {
         EXPECT_NEAR(luminance(toned), b * luminance(albedo), 1e-12) << i;
         // Darker: blue falls further than red (the wood's own hue deepens), lighter the reverse.
         const double warmer = (toned.r / toned.b) / (albedo.r / albedo.b);
-        if (b < 0.99) EXPECT_GT(warmer, 1) << i;
-        if (b > 1.01) EXPECT_LT(warmer, 1) << i;
+        if (b < 0.99) {
+            EXPECT_GT(warmer, 1) << i;
+        }
+        if (b > 1.01) {
+            EXPECT_LT(warmer, 1) << i;
+        }
     }
 }
 
