@@ -142,11 +142,10 @@ TEST_F(DenoiseCliTest, KeepsTheWoodsFineTextureOfA4096SppRender) {
         << denoised;  // measured 1.003 (1.034 before the diffuse AOV)
     EXPECT_NEAR(denoised["mid_ratio"].get<double>(), 1.0, 0.05) << denoised;  // 0.998
     EXPECT_LT(denoised["dE_ab"].get<double>(), 0.5) << denoised;              // 0.00
-    // 0.77 (noisy 0.19): the denoiser keeps what its albedo guide holds, and the 16-spp guide
-    // itself measures 0.78 of the reference's fine_aniso (the oak's sub-pixel vessels, seen
-    // through 16 jittered pixel windows, add a little isotropic noise to it; 0.91 before the
-    // vessels became continuous tubes kept to their area under the pixel filter).
-    EXPECT_GT(denoised["fine_aniso_ratio"].get<double>(), 0.7) << denoised;
+    // 0.90 (noisy 0.19): the denoiser keeps what its albedo guide holds. (0.77 while a pixel's
+    // wood was shaded at its 16 samples' mean point, which wandered with the samples and
+    // moved the oak's sub-pixel vessels under it: isotropic noise in the guide.)
+    EXPECT_GT(denoised["fine_aniso_ratio"].get<double>(), 0.85) << denoised;
 }
 
 /// The "FLIP mean" that `nenrin compare A B --flip` prints.
