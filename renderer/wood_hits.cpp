@@ -104,9 +104,8 @@ SurfaceFootprint WoodHits::cameraFootprint(const PathState& p, uint64_t pixelKey
 /// footprint (the per-sample differentials are 1 / differentialScale shorter). The ring
 /// profile is prefiltered over that footprint, so this is the pixel's box-filtered wood, as
 /// the mean of the samples' own (smaller-footprint) evaluations would be, at 1/spp of the
-/// cost. Light, visibility and
-/// geometry stay sampled per sample. Entries of one pixel are adjacent (pixel-major). Fills
-/// groupResults_ (one per pixel) and groupStart_.
+/// cost. Light, visibility and geometry stay sampled per sample. Entries of one pixel are
+/// adjacent (pixel-major). Fills groupResults_ (one per pixel) and groupStart_.
 void WoodHits::shadeCameraWood(const Batch& batch) {
     const size_t n = batch.entries.size();
     groupStart_.clear();
