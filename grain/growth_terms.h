@@ -48,15 +48,15 @@ inline double ageUnwarp(double years, double delta) {
     return delta == 1.0 ? years : std::pow(years, 1.0 / delta);
 }
 
-/// Eq. 9: taper, radial speed factor 1 + nu omega^Ta: the trunk thickens faster near its base.
-inline double taperFactor(double elongationYears, double nu, double omega) {
-    return nu == 0.0 ? 1.0 : 1.0 + nu * std::pow(omega, std::max(elongationYears, 0.0));
-}
-
-/// taperFactor with ln(omega) given: omega^Ta as exp(Ta ln omega), half pow's cost where the
-/// field makes ln(omega) once (equal to pow's to an ulp or two).
+/// Eq. 9 with ln(omega) given: omega^Ta as exp(Ta ln omega), half pow's cost where the field
+/// makes ln(omega) once (equal to pow's to an ulp or two).
 inline double taperFactorFromLog(double elongationYears, double nu, double logOmega) {
     return nu == 0.0 ? 1.0 : 1.0 + nu * std::exp(std::max(elongationYears, 0.0) * logOmega);
+}
+
+/// Eq. 9: taper, radial speed factor 1 + nu omega^Ta: the trunk thickens faster near its base.
+inline double taperFactor(double elongationYears, double nu, double omega) {
+    return taperFactorFromLog(elongationYears, nu, std::log(omega));
 }
 
 /// Eq. 10: dieback. After the branch dies at Tlim it stops thickening: its path time grows
