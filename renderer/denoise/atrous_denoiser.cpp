@@ -125,6 +125,13 @@ std::vector<float> blurredVariance(const std::vector<float>& variance, int w, in
     return out;
 }
 
+/// k where exponent = 2^k (0 to 10), else -1: cos^exponent is then k squarings, no log.
+int powerOfTwoSquarings(double exponent) {
+    for (int k = 0; k <= 10; ++k)
+        if (exponent == double(1 << k)) return k;
+    return -1;
+}
+
 /// One à-trous pass at `step`: the illumination and its variance, filtered.
 class Pass {
 public:
@@ -136,7 +143,11 @@ public:
           light_(light),
           variance_(variance),
           o_(o),
-          noise_(blurredVariance(variance, g.width, g.height)) {}
+          noise_(blurredVariance(variance, g.width, g.height)),
+          luma_(light.size() / 3),
+          squarings_(powerOfTwoSquarings(o.normalExponent)) {
+        for (size_t i = 0; i < luma_.size(); ++i) luma_[i] = luminance(&light[3 * i]);
+    }
 
     /// Pixel (x, y) into the outputs.
     void pixel(int x, int y, std::vector<float>& lightOut, std::vector<float>& varianceOut) const {
@@ -150,8 +161,7 @@ public:
             return;
         }
         constexpr double kernel[5] = {1.0 / 16, 1.0 / 4, 3.0 / 8, 1.0 / 4, 1.0 / 16};
-        const double lp = luminance(&light_[3 * p]);
-        const double noise = o_.sigmaLuminance * std::sqrt(std::max(0.0f, noise_[p])) + 1e-10;
+        const Centre centre = centreOf(p);
         double sum[3] = {0, 0, 0}, weights = 0, varianceSum = 0;
         for (int j = -2; j <= 2; ++j)
             for (int i = -2; i <= 2; ++i) {
@@ -159,11 +169,13 @@ public:
                 if (qx < 0 || qy < 0 || qx >= g_.width || qy >= g_.height) continue;
                 const size_t q = size_t(qy) * g_.width + qx;
                 if (!g_.hit[q]) continue;
-                double distance = edgeDistance(p, q, i * step_, j * step_);
-                if (i != 0 || j != 0) distance += std::abs(lp - luminance(&light_[3 * q])) / noise;
+                double normal = 1;
+                const double distance = edgeDistance(centre, q, i, j, normal);
                 // Past e^-40 a weight is nothing beside the centre's: one exp saved.
                 if (!(distance < 40)) continue;
-                const double w = kernel[i + 2] * kernel[j + 2] * std::exp(-distance);
+                // A float exp: the weights need no more than its 1e-7, and it is twice as fast.
+                const double w =
+                    kernel[i + 2] * kernel[j + 2] * normal * double(std::exp(-float(distance)));
                 for (int c = 0; c < 3; ++c) sum[c] += w * light_[3 * q + c];
                 weights += w;
                 varianceSum += w * w * variance_[q];
@@ -173,6 +185,33 @@ public:
     }
 
 private:
+    /// Pixel p's guides, and the reciprocals of its scales (a multiply per tap, not a divide).
+    struct Centre {
+        size_t index;
+        double normal[3], depth, depthGradient[2], visibility, occlusion, albedo, luminance;
+        double perDepth, perVisibility, perOcclusion, perAlbedo, perLuminance;
+    };
+
+    Centre centreOf(size_t p) const {
+        Centre c;
+        c.index = p;
+        for (int k = 0; k < 3; ++k) c.normal[k] = g_.normal[3 * p + k];
+        c.depth = g_.depth[p];
+        c.depthGradient[0] = g_.depthGradient[2 * p];
+        c.depthGradient[1] = g_.depthGradient[2 * p + 1];
+        c.visibility = g_.visibility[p];
+        c.occlusion = g_.occlusion[p];
+        c.albedo = g_.albedo[p];
+        c.luminance = luma_[p];
+        c.perDepth = 1 / (o_.sigmaDepth * g_.depthSlope[p] * step_ + 1e-9);
+        c.perVisibility = 1 / double(g_.visibilityScale[p]);
+        c.perOcclusion = 1 / double(g_.occlusionScale[p]);
+        // The gloss has no albedo guide.
+        c.perAlbedo = glossPass_ ? 0.0 : 1 / (o_.sigmaAlbedo * g_.albedo[p]);
+        c.perLuminance = 1 / (o_.sigmaLuminance * std::sqrt(std::max(0.0f, noise_[p])) + 1e-10);
+        return c;
+    }
+
     /// How much pixel q lies on p's surface, lit as p is: their normals' agreement, q's depth
     /// off p's plane (its depth and depth gradient) against p's depth slope over the taps'
     /// distance, their shares of direct light not blocked (a shadow's edge, which no other
@@ -182,30 +221,39 @@ private:
     /// light over the albedo is not only the light where the wood's fibre lobe (a sheen along
     /// the fibres) or, in a render without the diffuse AOV, a coat's gloss adds to it (the same
     /// gloss over dark and pale boards steps the quotient at every board, knot and ring), and
-    /// filtering across would smear those steps. The weights multiply, so their
-    /// logarithms add: returned is minus the log of cos^exponent x exp(-depth term) x ... ,
-    /// one exp for the lot (infinite where the normals are 90 degrees or more apart; 0 for p
-    /// itself, whose weight keeps the sum above zero even without a normal).
-    double edgeDistance(size_t p, size_t q, int dx, int dy) const {
-        if (p == q) return 0;
-        const int taps = (std::abs(dx) + std::abs(dy)) / step_;
-        const double cosine = g_.normal[3 * p] * g_.normal[3 * q] +
-                              g_.normal[3 * p + 1] * g_.normal[3 * q + 1] +
-                              g_.normal[3 * p + 2] * g_.normal[3 * q + 2];
+    /// filtering across would smear those steps; last, their luminances' difference against
+    /// p's noise. The weights multiply, so their logarithms add: returned is minus the log of
+    /// exp(-depth term) x exp(-visibility term) x ... , one exp for the lot, and
+    /// `normalWeight` is set to cos^exponent (by squarings where the exponent is a power of
+    /// two, as the default 128 is: no log; else its log is in the sum and the weight left 1).
+    /// Infinite where the normals are 90 degrees or more apart; 0 for p itself, whose weight
+    /// keeps the sum above zero even without a normal. (i, j): q's taps from p.
+    double edgeDistance(const Centre& p, size_t q, int i, int j, double& normalWeight) const {
+        if (p.index == q) return 0;
+        const double cosine = p.normal[0] * g_.normal[3 * q] + p.normal[1] * g_.normal[3 * q + 1] +
+                              p.normal[2] * g_.normal[3 * q + 2];
         if (!(cosine > 0)) return HUGE_VAL;
-        const double normal = cosine < 1 ? -o_.normalExponent * std::log(cosine) : 0.0;
-        // q's depth against p's plane: a slanted wall is no edge along its slant.
+        double normal = 0;
+        if (cosine < 1) {
+            if (squarings_ >= 0) {
+                normalWeight = cosine;
+                for (int k = 0; k < squarings_; ++k) normalWeight *= normalWeight;
+            } else {
+                normal = -o_.normalExponent * std::log(cosine);
+            }
+        }
+        // q's depth against p's plane: a slanted wall is no edge along its slant. Its scale
+        // grows with the taps' distance (|i| + |j| taps: 1 to 4).
+        constexpr double perTaps[5] = {0, 1, 1.0 / 2, 1.0 / 3, 1.0 / 4};
         const double predicted =
-            g_.depth[p] + g_.depthGradient[2 * p] * dx + g_.depthGradient[2 * p + 1] * dy;
-        const double depth = std::abs(g_.depth[q] - predicted) /
-                             (o_.sigmaDepth * g_.depthSlope[p] * step_ * taps + 1e-9);
-        const double visibility =
-            std::abs(g_.visibility[p] - g_.visibility[q]) / g_.visibilityScale[p];
-        const double occlusion = std::abs(g_.occlusion[p] - g_.occlusion[q]) / g_.occlusionScale[p];
-        const double albedo =
-            glossPass_ ? 0.0
-                       : std::abs(g_.albedo[p] - g_.albedo[q]) / (o_.sigmaAlbedo * g_.albedo[p]);
-        return normal + depth + visibility + occlusion + albedo;
+            p.depth + (p.depthGradient[0] * i + p.depthGradient[1] * j) * step_;
+        const double depth =
+            std::abs(g_.depth[q] - predicted) * p.perDepth * perTaps[std::abs(i) + std::abs(j)];
+        const double visibility = std::abs(p.visibility - g_.visibility[q]) * p.perVisibility;
+        const double occlusion = std::abs(p.occlusion - g_.occlusion[q]) * p.perOcclusion;
+        const double albedo = std::abs(p.albedo - g_.albedo[q]) * p.perAlbedo;
+        const double luminance = std::abs(p.luminance - luma_[q]) * p.perLuminance;
+        return normal + depth + visibility + occlusion + albedo + luminance;
     }
 
     const Guides& g_;
@@ -215,6 +263,8 @@ private:
     const std::vector<float>& variance_;
     const DenoiseOptions& o_;
     std::vector<float> noise_;  ///< the variance blurred
+    std::vector<double> luma_;  ///< the signal's luminance per pixel
+    int squarings_;             ///< normalExponent = 2^squarings_, or -1
 };
 
 /// The passes over one component of the radiance and its variance, in place.
