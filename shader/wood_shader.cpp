@@ -56,18 +56,26 @@ void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample
 }
 
 Vec3 WoodShader::applyAnatomy(const GrowthSample& s, const Vec3& point, const SurfaceFootprint& f,
-                              double cellContrast, double otherContrast,
-                              WoodSurfaceSample& o) const {
+                              double endGrain, WoodSurfaceSample& o) const {
     // Fibres, pores and rays about the trunk's axis, and inside a knot about its branch's:
     // there the rays radiate from the knot's pith and the fibres follow it.
-    // The cells' own texture (fibres, speckle) shows `cellContrast` times as strongly; the
-    // streaks, ring tones and vessels are the same on any face.
+    // On end grain the cells' own texture (fibres, speckle) and the streaks, ring tones and
+    // vessels each show as strongly as the grain's end_grain settings say.
+    const ColourParams& colour = field_->params().colour;
+    const double cellContrast = 1 + colour.endGrainTexture * endGrain;
+    const double otherContrast = 1 + colour.endGrainContrast * endGrain;
     AnatomyParams anatomy = field_->params().anatomy;
     anatomy.fibreAmplitude *= cellContrast;
     anatomy.speckleAmplitude *= cellContrast;
     anatomy.streakAmplitude *= otherContrast;
     anatomy.ringTone *= otherContrast;
     anatomy.poreDarkening *= otherContrast;
+    // Conifer cells stand in radial files, which a side face cut near the radius shows as
+    // cells drawn out across the fibre; on end grain, at a photograph's 0.2 mm a pixel, a
+    // sawn or planed face shows round grains instead (Mokume H11's end faces): drawn out
+    // there, the speckle read as grey radial fur.
+    if (anatomy.speckleRadial > 0)
+        anatomy.speckleRadial += (anatomy.speckleSize - anatomy.speckleRadial) * endGrain;
     const bool knotted = s.knotChain >= 0 && s.knot > 0;
     const double inKnot = knotted ? smoothstep(0.3, 0.6, s.knot) : 0.0;
     AnatomySample a =
@@ -156,9 +164,9 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
                 ? endGrainWeight(std::abs(dot(normalize(footprints[i].normal), o.fibre)))
                 : 0.0;
         if (field_->params().anatomy.enabled && !outside)
-            anatomyRelief = applyAnatomy(
-                s, treePoints[i], footprints.empty() ? SurfaceFootprint{} : footprints[i],
-                1 + colour.endGrainTexture * endGrain, 1 + colour.endGrainContrast * endGrain, o);
+            anatomyRelief =
+                applyAnatomy(s, treePoints[i],
+                             footprints.empty() ? SurfaceFootprint{} : footprints[i], endGrain, o);
         if (!footprints.empty() && !outside && finish_.sawMarks > 0) {
             const SurfaceFootprint& f = footprints[i];
             const SawMarkSample m = sawMarks(finish_, treePoints[i], f.dpdx, f.dpdy, endGrain);

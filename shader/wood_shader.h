@@ -83,11 +83,12 @@ public:
                          std::span<WoodSurfaceSample> out, WoodScratch& scratch) const;
 
 private:
-    /// Multiplies the albedo by the anatomy's texture (on end grain the cells' own
-    /// `cellContrast` times as strong, its streaks, ring tones and vessels `otherContrast`
-    /// times); returns its relief gradient.
+    /// Multiplies the albedo by the anatomy's texture; returns its relief gradient. `endGrain`
+    /// (0-1, endGrainWeight) strengthens the cells' own texture by the grain's
+    /// `end_grain.texture` and its streaks, ring tones and vessels by `end_grain.contrast`, and
+    /// rounds the cells (their radial files are a side-grain look).
     Vec3 applyAnatomy(const GrowthSample& s, const Vec3& point, const SurfaceFootprint& f,
-                      double cellContrast, double otherContrast, WoodSurfaceSample& o) const;
+                      double endGrain, WoodSurfaceSample& o) const;
 
     const GrowthField* field_;
     Finish finish_;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "skeleton/skeleton_index.h"
+#include "tests/shader/structure_tensor.h"
 #include "tests/test_trees.h"
 
 namespace nenrin {
@@ -255,15 +256,7 @@ double endGrainAnisotropy(double azimuth, Value value) {
         for (int j = 0; j < n; ++j)
             v[i * n + j] = value(radial * (0.07 + step * (i - n / 2)) + tangential * (step * j) +
                                  Vec3{0, 0, 0.3});
-    double xx = 0, yy = 0, xy = 0;
-    for (int i = 0; i + 1 < n; ++i)
-        for (int j = 0; j + 1 < n; ++j) {
-            const double gx = v[(i + 1) * n + j] - v[i * n + j],
-                         gy = v[i * n + j + 1] - v[i * n + j];
-            xx += gx * gx, yy += gy * gy, xy += gx * gy;
-        }
-    const double tr = xx + yy, d = std::sqrt((xx - yy) * (xx - yy) + 4 * xy * xy);
-    return (tr + d) / std::max(tr - d, 1e-30);
+    return test::structureTensorRatio(v, n);
 }
 
 // The anatomy's lattice is polar (arcs at a fixed radius per annulus or vessel row), not

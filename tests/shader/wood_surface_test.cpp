@@ -11,6 +11,7 @@
 #include "shader/ring_profile.h"
 #include "shader/wood_shader.h"
 #include "skeleton/skeleton_index.h"
+#include "tests/shader/structure_tensor.h"
 #include "tests/test_trees.h"
 
 namespace nenrin {
@@ -187,6 +188,49 @@ TEST_F(StraightTrunkSurface, TheStrongestTextureAGrainAllowsKeepsTheAlbedoARefle
             bright += c == 1.0;
         }
     EXPECT_GT(bright, 0) << "the case reaches the bound";
+}
+
+// Conifer cells in radial files (speckle drawn out radially) show as such on a quarter-sawn
+// face, across the fibre; on end grain they are round (drawn out there they read as grey
+// radial fur next to a photograph of hinoki end grain, Mokume H11 B).
+TEST_F(StraightTrunkSurface, RadialCellFilesShowOnSideGrainAndRoundCellsOnEndGrain) {
+    grain_.anatomy.enabled = true;
+    grain_.anatomy.fibreAmplitude = grain_.anatomy.streakAmplitude = grain_.anatomy.ringTone = 0;
+    grain_.anatomy.rayWidth = 0;
+    grain_.anatomy.speckleAmplitude = 0.3;
+    grain_.anatomy.speckleSize = grain_.anatomy.speckleLength = 0.0002;
+    grain_.anatomy.speckleRadial = 0.0008;
+    grain_.colour.earlyWood = grain_.colour.lateWood = {0.6, 0.45, 0.35};
+    const GrowthField field(index_, grain_);
+    const WoodShader shader(field);
+    // An n x n patch, 40 um a step, of the albedo's red: rows along `rows`, columns along
+    // `columns`, the face's normal `normal`, point-sampled (a footprint of 1 um).
+    constexpr int n = 80;
+    auto patch = [&](const Vec3& centre, const Vec3& rows, const Vec3& columns,
+                     const Vec3& normal) {
+        std::vector<Vec3> points;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j)
+                points.push_back(centre + rows * (0.00004 * (i - n / 2)) +
+                                 columns * (0.00004 * (j - n / 2)));
+        std::vector<SurfaceFootprint> f(points.size(), {{}, {}, 1e-6, normal});
+        std::vector<WoodSurfaceSample> out(points.size());
+        WoodScratch scratch;
+        shader.evaluateSurface(points, f, out, scratch);
+        std::vector<double> v;
+        for (const WoodSurfaceSample& o : out) v.push_back(o.albedo.r);
+        return v;
+    };
+    const Vec3 radial{1, 0, 0}, tangential{0, 1, 0}, up{0, 0, 1};
+    // End grain at 7 cm from the pith: round cells.
+    EXPECT_LT(test::structureTensorRatio(patch({0.07, 0, 1}, radial, tangential, up), n), 1.6);
+    // Quarter-sawn (the plane through the pith): cells 4 times as long radially as along the
+    // fibre, so the texture changes faster up the trunk than out along the radius.
+    double alongRadius = 0, alongFibre = 0;
+    const double ratio = test::structureTensorRatio(patch({0.07, 0, 1}, radial, up, tangential), n,
+                                                    &alongRadius, &alongFibre);
+    EXPECT_GT(ratio, 3);
+    EXPECT_GT(alongFibre, 3 * alongRadius);
 }
 
 TEST(WoodSurface, FibresBendAroundAKnot) {
