@@ -310,26 +310,55 @@ void placeBranches(WoodFit& fit, const std::vector<FaceKnot>& knots, const Sampl
 /// Rounds of knot sizing.
 constexpr int kKnotSizeRounds = 2;
 
-/// Moves each branch's birth so that its knot in the bake of the face that sized it is as
-/// large as in the photo: the knot's radius is about gamma (r - t w) (eq. 3', w the ring
-/// width), so t moves by the radii's difference over gamma w. (The radius the knot finder
+/// Moves each branch's birth so that its knots in the bakes are as large as in the photos:
+/// a knot's radius is about gamma (r - t w) (eq. 3', w the ring width), so the year t the tip
+/// passed it moves by the radii's difference over gamma w. (The radius the knot finder
 /// measures is its dark wood's, inside the branch's share: the first estimate of t makes the
-/// knots too small.) Leaves the skeleton rebuilt.
-void sizeKnots(WoodFit& fit, const std::vector<FacePhoto>& photos, const FitOptions& options) {
+/// knots too small.) A branch through two faces takes both faces' moves, each carried to the
+/// sizing knot by the ratio of the paths from the pith (its birth times grow in proportion to
+/// the path) and weighed by how squarely the branch crosses the face: one knot's radius is
+/// read a tenth off now and then (its faint rings under the texture), and a branch crossing
+/// two faces about as squarely took whichever such reading came first. Leaves the skeleton
+/// rebuilt.
+void sizeKnots(WoodFit& fit, const std::vector<FacePhoto>& photos,
+               const std::vector<FaceKnot>& knots, const FitOptions& options) {
     const double ringWidth = meanRingWidth(fit.profile);
     for (int round = 0; round < kKnotSizeRounds; ++round) {
         const GrownTree tree(Skeleton(fit.skeleton), parseGrain(fit.grain, "the fitted grain"));
         const WoodShader shader(tree.field());
-        for (KnotBranch& b : fit.branches)
+        for (KnotBranch& b : fit.branches) {
+            if (b.points.empty()) continue;
+            const Vec3 u = normalize(b.points.back() - b.start);
+            const double sizerPath = length(b.sizedAt - b.start);
+            double moves = 0, weights = 0;
             for (const FacePhoto& p : photos) {
-                if (p.face->name != b.sizedBy) continue;
+                if (std::find(b.faces.begin(), b.faces.end(), p.face->name) == b.faces.end())
+                    continue;
+                // The photographed knot on this face: the sizing one, or the face's own.
+                Vec3 centre = b.sizedAt;
+                double radius = b.radius;
+                if (p.face->name != b.sizedBy) {
+                    const auto k = std::find_if(knots.begin(), knots.end(), [&](const FaceKnot& x) {
+                        return x.face == p.face->name;
+                    });
+                    if (k == knots.end()) continue;
+                    centre = k->centre, radius = k->radius;
+                }
+                const double path = length(centre - b.start);
+                if (!(path > 0) || !(radius > 0)) continue;
                 const FaceFigures f = measureFace(shader, fit.skeleton, p, options);
                 const std::optional<FaceKnot> baked = strongestRingCentre(f.lightness, *p.face);
-                if (!baked || length(baked->centre - b.sizedAt) > b.radius) continue;
-                // (Not past the year the trunk's bark reached the knot: it would vanish.)
-                b.birth = std::clamp(b.birth - (b.radius - baked->radius) / (b.gamma * ringWidth),
-                                     0.0, ringRadius(fit.pith, b.sizedAt) / ringWidth);
+                if (!baked || length(baked->centre - centre) > radius) continue;
+                const double square = std::abs(dot(u, p.face->normal()));
+                moves +=
+                    square * (radius - baked->radius) / (b.gamma * ringWidth) * sizerPath / path;
+                weights += square;
             }
+            // (Not past the year the trunk's bark reached the knot: it would vanish.)
+            if (weights > 0)
+                b.birth = std::clamp(b.birth - moves / weights, 0.0,
+                                     ringRadius(fit.pith, b.sizedAt) / ringWidth);
+        }
         fit.skeleton = pithSkeleton(fit.pith, fit.profile);
         addKnotBranches(fit.skeleton, fit.branches);
     }
@@ -460,7 +489,7 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
     }
     takeOutAnatomyTone(fit, photos, options);
     if (!fit.branches.empty()) {
-        sizeKnots(fit, photos, options);
+        sizeKnots(fit, photos, knots, options);
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, 0);
     }
     std::vector<FaceKnot> aimed = knots;
