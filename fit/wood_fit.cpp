@@ -261,15 +261,20 @@ double meanRingWidth(const RadialRings& profile) {
     return (b.back() - b.front()) / double(std::max<size_t>(1, b.size() - 1));
 }
 
+/// The knot found on the face named `face` (at most one per face), or null.
+const FaceKnot* knotOnFace(const std::vector<FaceKnot>& knots, const std::string& face) {
+    const auto k =
+        std::find_if(knots.begin(), knots.end(), [&](const FaceKnot& x) { return x.face == face; });
+    return k == knots.end() ? nullptr : &*k;
+}
+
 /// The faces to read the ring series on: those without a knot, if any (a knot's dark wood
 /// and its own rings make the clearest strip, and the wrong one).
 std::vector<FacePhoto> ringFaces(const std::vector<FacePhoto>& fitted,
                                  const std::vector<FaceKnot>& knots) {
     std::vector<FacePhoto> plain;
     for (const FacePhoto& p : fitted)
-        if (std::none_of(knots.begin(), knots.end(),
-                         [&](const FaceKnot& k) { return k.face == p.face->name; }))
-            plain.push_back(p);
+        if (!knotOnFace(knots, p.face->name)) plain.push_back(p);
     return plain.empty() ? fitted : plain;
 }
 
@@ -332,18 +337,12 @@ void sizeKnots(WoodFit& fit, const std::vector<FacePhoto>& photos,
             const double sizerPath = length(b.sizedAt - b.start);
             double moves = 0, weights = 0;
             for (const FacePhoto& p : photos) {
-                if (std::find(b.faces.begin(), b.faces.end(), p.face->name) == b.faces.end())
+                // The branch's photographed knot on this face (the sizing one among them).
+                const FaceKnot* k = knotOnFace(knots, p.face->name);
+                if (!k || std::find(b.faces.begin(), b.faces.end(), p.face->name) == b.faces.end())
                     continue;
-                // The photographed knot on this face: the sizing one, or the face's own.
-                Vec3 centre = b.sizedAt;
-                double radius = b.radius;
-                if (p.face->name != b.sizedBy) {
-                    const auto k = std::find_if(knots.begin(), knots.end(), [&](const FaceKnot& x) {
-                        return x.face == p.face->name;
-                    });
-                    if (k == knots.end()) continue;
-                    centre = k->centre, radius = k->radius;
-                }
+                const Vec3 centre = k->centre;
+                const double radius = k->radius;
                 const double path = length(centre - b.start);
                 if (!(path > 0) || !(radius > 0)) continue;
                 const FaceFigures f = measureFace(shader, fit.skeleton, p, options);
