@@ -41,16 +41,6 @@ Rgb medianRatio(std::span<const FaceFigures> faces, FaceKind kind,
     return out;
 }
 
-/// How well the fitted faces' mean colours match, worst first: how many differ by more than
-/// the 5 dE*ab, then the root mean square of the differences.
-std::pair<int, double> colourMisfit(std::span<const FaceFigures> faces) {
-    double sum = 0;
-    int count = 0, over = 0;
-    for (const FaceFigures& f : faces)
-        if (!f.heldOut) sum += f.dE * f.dE, ++count, over += f.dE > kMaxColourDifference;
-    return {over, count > 0 ? std::sqrt(sum / count) : 0};
-}
-
 /// The tint a grain's end grain has now: its own, or what darkening and redness make.
 Rgb currentTint(const nlohmann::json& grain) {
     const ColourParams c = parseGrain(grain, "the fitted grain").colour;
@@ -60,6 +50,14 @@ Rgb currentTint(const nlohmann::json& grain) {
 }
 
 }  // namespace
+
+std::pair<int, double> colourMisfit(std::span<const FaceFigures> faces) {
+    double sum = 0;
+    int count = 0, over = 0;
+    for (const FaceFigures& f : faces)
+        if (!f.heldOut) sum += f.dE * f.dE, ++count, over += f.dE > kMaxColourDifference;
+    return {over, count > 0 ? std::sqrt(sum / count) : 0};
+}
 
 double worstLog(const Rgb& ratio) {
     return std::max(

@@ -8,6 +8,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "fit/wood_fit.h"
@@ -23,6 +24,10 @@ enum class FaceKind { Any, Side, End };
 /// weight (a face is end grain over 0.5), needed unless `kind` is Any.
 Rgb colourRatio(std::span<const FaceFigures> faces, FaceKind kind = FaceKind::Any,
                 std::span<const double> endWeights = {});
+
+/// How well the fitted faces' mean colours match, worst first: how many differ by more than
+/// the 5 dE*ab, then the root mean square of the differences.
+std::pair<int, double> colourMisfit(std::span<const FaceFigures> faces);
 
 /// The largest |log| of a ratio's channels: how far it is from (1, 1, 1).
 double worstLog(const Rgb& ratio);

@@ -11,6 +11,7 @@
 #include "fit/cross_dating.h"
 #include "fit/end_grain_tint.h"
 #include "fit/knot_colour.h"
+#include "fit/knot_halo.h"
 #include "fit/knot_rings.h"
 #include "fit/profile_sharpening.h"
 #include "fit/texture_match.h"
@@ -502,7 +503,14 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
     if (fit.texture.bakes > 0)
         fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, kColourRounds);
     matchEndGrainTint(fit.grain, fit.faces, endWeights, rebake, kColourRounds);
-    if (!fit.branches.empty()) colourKnots(fit, photos, options);
+    if (!fit.branches.empty()) {
+        // The stem wood round the knots, the wood's colours again for the means it moved,
+        // then the knots' own wood.
+        fit.halo = matchKnotHalo(fit.grain, fit.faces, rebake);
+        if (fit.halo.kept)
+            fit.faces = calibrateColours(fit.grain, fit.skeleton, photos, options, kColourRounds);
+        colourKnots(fit, photos, options);
+    }
     fit.knots = knotFigures(photos, centres, fit.faces, fit.pith);
     if (options.baseGrains.empty())
         fit.warnings.push_back(
@@ -545,6 +553,11 @@ nlohmann::json fitReport(const Sample& sample, const WoodFit& fit) {
         knotsJson["ring_contrast"] = {{"photo", rounded(fit.knotRings.photo, 0.01)},
                                       {"baked", rounded(fit.knotRings.baked, 0.01)},
                                       {"pixels", fit.knotRings.pixels}};
+    if (fit.halo.bakes > 0)
+        knotsJson["halo"] = {{"kept", fit.halo.kept},
+                             {"width", fit.halo.width},
+                             {"axial", fit.halo.axial},
+                             {"bakes", fit.halo.bakes}};
     const PithLine& p = fit.pith;
     nlohmann::json widths = nlohmann::json::array();
     const std::vector<double>& b = fit.profile.boundaries;

@@ -75,6 +75,14 @@ struct TextureStrengths {
     int bakes = 0;  ///< bakes the fit took
 };
 
+/// The halo round the knots as fitted (fit/knot_halo.h).
+struct HaloFit {
+    bool kept = false;  ///< the halo is in the grain
+    double width = 0;   ///< m across the stem
+    double axial = 0;   ///< its stretch along the stem
+    int bakes = 0;      ///< bakes it took
+};
+
 struct WoodFit {
     PithLine pith;
     RingWarp warp;
@@ -92,6 +100,7 @@ struct WoodFit {
     std::vector<KnotFigures> knots;  ///< every face whose photograph shows a knot
     KnotRingContrast knotRings;      ///< of the knot wood, photographs and bakes
     TextureStrengths texture;
+    HaloFit halo;
     std::vector<std::string> warnings;
     double seconds = 0;
 };

@@ -196,7 +196,7 @@ void readLateWoodProfile(JsonReader& c, ColourParams& cp) {
                                                            i, cp.lateWoodProfile[i]));
 }
 
-/// Knot colours: darkening, core, a dead knot's rim and checks, tints.
+/// Knot colours: darkening, core, a dead knot's rim and checks, tints, the halo round them.
 void readKnotColours(JsonReader& k, ColourParams& cp) {
     cp.knotDarkening = k.inRange("darkening", cp.knotDarkening, 0, 1);
     cp.deadKnotDarkening = k.inRange("dead_darkening", cp.deadKnotDarkening, 0, 1);
@@ -208,6 +208,9 @@ void readKnotColours(JsonReader& k, ColourParams& cp) {
     cp.deadKnotCheckWidth = k.inRange("dead_check_width", cp.deadKnotCheckWidth, 0, 0.01);
     cp.knotTint = readRgb(k, "tint", cp.knotTint, 0);
     cp.deadKnotTint = readRgb(k, "dead_tint", cp.deadKnotTint, 0);
+    cp.knotHaloTint = readRgb(k, "halo_tint", cp.knotHaloTint, 0);
+    cp.knotHaloWidth = k.inRange("halo_width", cp.knotHaloWidth, 0, 0.1);
+    cp.knotHaloAxial = k.inRange("halo_axial", cp.knotHaloAxial, 1, 20);
     k.finish();
 }
 
@@ -304,7 +307,10 @@ nlohmann::json colourJson(const ColourParams& c) {
           {"dead_checks", c.deadKnotChecks},
           {"dead_check_width", c.deadKnotCheckWidth},
           {"tint", rgbJson(c.knotTint)},
-          {"dead_tint", rgbJson(c.deadKnotTint)}}},
+          {"dead_tint", rgbJson(c.deadKnotTint)},
+          {"halo_tint", rgbJson(c.knotHaloTint)},
+          {"halo_width", c.knotHaloWidth},
+          {"halo_axial", c.knotHaloAxial}}},
         {"end_grain", endGrainJson(c)}};
     // No measured profile: the key left out (a file cannot hold an empty one).
     if (c.lateWoodProfile.empty()) j.erase("late_wood_profile");

@@ -85,6 +85,14 @@ struct ColourParams {
     /// inside living and dead knots (white = the stem's hue, only darkened).
     Rgb knotTint{1, 1, 1};
     Rgb deadKnotTint{1, 1, 1};
+    /// The stem wood round a knot is often discoloured: resin-soaked and compression wood
+    /// (conifers' "red wood"), orange to red-brown, reaching farther along the stem than across
+    /// it because it follows the fibres. A filter on the wood colour there (white = none),
+    /// full at the knot's edge and fading to none `knotHaloWidth` m out across the stem,
+    /// `knotHaloWidth x knotHaloAxial` m out along it (grain/knot_look.h).
+    Rgb knotHaloTint{1, 1, 1};
+    double knotHaloWidth = 0.005;
+    double knotHaloAxial = 3;
     /// End grain measures darker and redder than side grain (Hirata et al. 2020, 60 species):
     /// open cell ends trap light. At a surface cut across the fibre the albedo's green and
     /// blue are multiplied by 1 - endGrainDarkening, its red by 1 - endGrainDarkening x

@@ -7,10 +7,15 @@
 #include "grain/growth_terms.h"
 #include "util/axis_frame.h"
 #include "util/hash.h"
+#include "util/value_noise.h"
 
 namespace nenrin {
 
 namespace {
+
+/// The halo's patches: a value noise on a lattice of 1.5 halo widths varies its reach by half.
+constexpr double kHaloNoiseScale = 1.5, kHaloPatchiness = 0.5;
+constexpr uint64_t kHaloSalt = 0x4a10;
 
 /// A radial drying check of a dead knot: a crack in the plane through the branch's axis at
 /// the knot's own seeded azimuth, opening from the pith outward and closing at the bark.
@@ -58,6 +63,23 @@ KnotLook knotLook(const GrowthSample& s, const ColourParams& c, double footprint
     darkening = 1 - (1 - darkening) * (1 - c.deadKnotRim * out.rim) * (1 - 0.8 * out.check);
     out.darkening = std::clamp(darkening, 0.0, 0.95);
     return out;
+}
+
+double knotHalo(const GrowthSample& s, const Vec3& treePoint, const ColourParams& c) {
+    if (s.knotChain < 0 || c.knotHaloWidth <= 0 || s.knotRadius <= 0) return 0;
+    const double d = s.knotAxisDistance;
+    if (d <= s.knotRadius) return 1;
+    // An ellipse about the branch's axis, stretched along the stem's: on this ray the halo
+    // reaches width x d / stretched beyond the knot's edge.
+    const double along = dot(s.knotOffset, normalize(s.axisDirection));
+    const double across2 = std::max(0.0, d * d - along * along);
+    const double stretched =
+        std::sqrt(across2 + along * along / (c.knotHaloAxial * c.knotHaloAxial));
+    const Vec3 q = treePoint * (1 / (kHaloNoiseScale * c.knotHaloWidth));
+    const double patch =
+        1 + kHaloPatchiness * valueNoise(hashCombine(c.microSeed, kHaloSalt), q.x, q.y, q.z);
+    const double reach = patch * c.knotHaloWidth * d / std::max(stretched, 1e-12 * d);
+    return 1 - smoothstep(0.0, 1.0, (d - s.knotRadius) / reach);
 }
 
 }  // namespace nenrin

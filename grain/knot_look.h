@@ -4,6 +4,8 @@
 /// knot wood. Knot wood is compression wood, darker towards its pith (the dark core); a dead,
 /// encased knot is ringed by the branch's bark, a dark band of a stated width in metres just
 /// inside its edge all round, and often opened by a drying check running out from its pith.
+/// Round the knot the stem's own wood is often discoloured (resin, compression wood): a halo
+/// drawn out along the stem.
 
 #include "grain/grain_params.h"
 #include "grain/growth_field.h"
@@ -21,5 +23,13 @@ struct KnotLook {
 /// `footprint` (m) is the pixel's size on the surface: the rim and the checks are box-filtered
 /// over it (0 = a point sample, drawn sharp).
 KnotLook knotLook(const GrowthSample& sample, const ColourParams& colour, double footprint = 0);
+
+/// The weight of `colour.knotHaloTint` at a point of the stem (`treePoint`, tree space): 1 out
+/// to the knot's edge, fading to 0 `knotHaloWidth` beyond it across the stem and
+/// `knotHaloAxial` times that along it, the reach varied by half either way by a value noise
+/// of the halo's own scale so that its edge is patchy, as resin soaks in. The caller keeps it
+/// off the knot wood, which has its own tint. 0 where the field names no branch (out of every
+/// branch's reach) or the width is 0.
+double knotHalo(const GrowthSample& sample, const Vec3& treePoint, const ColourParams& colour);
 
 }  // namespace nenrin

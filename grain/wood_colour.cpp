@@ -29,6 +29,11 @@ Rgb woodColour(const GrowthSample& s, const Vec3& treePoint, const ColourParams&
         colour = multiply(
             colour,
             mix(Rgb{1, 1, 1}, mix(c.knotTint, c.deadKnotTint, knot.deadFraction), knot.tint));
+    // The discoloured stem wood round it.
+    if (c.knotHaloTint != Rgb{1, 1, 1}) {
+        const double halo = (1 - knot.tint) * knotHalo(s, treePoint, c);
+        if (halo > 0) colour = multiply(colour, mix(Rgb{1, 1, 1}, c.knotHaloTint, halo));
+    }
     colour = colour * brightness;
     return {std::max(colour.r, 0.0), std::max(colour.g, 0.0), std::max(colour.b, 0.0)};
 }

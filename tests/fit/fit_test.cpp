@@ -201,9 +201,10 @@ nlohmann::json hinokiWith(double ringDarkening) {
 }
 
 /// The cube baked with hinoki's colours and anatomy (its knots' late wood darkened by
-/// `knotRingDarkening`).
+/// `knotRingDarkening`, `knotColours` set in its `colour.knots`).
 SyntheticSample bakeSyntheticSample(const fs::path& dir, bool knot = false,
-                                    double knotRingDarkening = 0) {
+                                    double knotRingDarkening = 0,
+                                    const nlohmann::json& knotColours = nlohmann::json::object()) {
     SyntheticSample s;
     s.knot = knot;
     std::mt19937 random(3);
@@ -221,6 +222,7 @@ SyntheticSample bakeSyntheticSample(const fs::path& dir, bool knot = false,
     }
     // Hinoki's colours and anatomy, its ring shapes off: the rings are cylinders.
     nlohmann::json grain = hinokiWith(knotRingDarkening);
+    grain["colour"]["knots"].update(knotColours);
     for (const char* key : {"sway", "wander", "direction", "rings"}) grain.erase(key);
     const GrownTree tree(Skeleton(skeleton), parseGrain(grain, "hinoki"));
     const WoodShader shader(tree.field());
@@ -372,11 +374,41 @@ double ringDarkening(const WoodFit& fit) {
     return fit.grain["colour"]["knots"].value("ring_darkening", 0.0);
 }
 
+/// The fitted halo's tint (white without one).
+Rgb haloTint(const WoodFit& fit) {
+    const nlohmann::json& knots = fit.grain["colour"]["knots"];
+    if (!fit.halo.kept || !knots.contains("halo_tint")) return {1, 1, 1};
+    const nlohmann::json& t = knots["halo_tint"];
+    return {t[0].get<double>(), t[1].get<double>(), t[2].get<double>()};
+}
+
 TEST(WoodFit, PutsTheBranchOfABakedKnotThroughBothFacesItCrosses) {
     // A knot whose late wood is no darker than the stem's, fitted from the preset (0.25):
-    // the darkening is taken out, none invented.
+    // the darkening is taken out, none invented; nor a halo where the bake has none.
     const WoodFit fit = expectBakedKnotFitted("knot", 0, 0.25);
     EXPECT_LT(ringDarkening(fit), 0.1);
+    const Rgb halo = haloTint(fit);
+    EXPECT_GT(std::min({halo.r, halo.g, halo.b}), 0.9);
+}
+
+TEST(WoodFit, FindsTheOrangeHaloRoundABakedKnot) {
+    // The knot cube baked with an orange halo 6 mm wide, three times that along the stem,
+    // fitted from the preset (none): its reach and tint are found, and the faces' colours
+    // match as well as without one.
+    const ScratchFolder folder("fit-halo");
+    const Rgb truth{0.8, 0.6, 0.45};
+    const SyntheticSample baked = bakeSyntheticSample(
+        folder.path(), true, 0.25,
+        {{"halo_tint", {truth.r, truth.g, truth.b}}, {"halo_width", 0.006}, {"halo_axial", 3}});
+    const WoodFit fit = fitSample(loadSampleFile(baked.file.string()), hinokiOptions());
+    ASSERT_TRUE(fit.halo.kept);
+    EXPECT_EQ(fit.halo.width, 0.006);
+    EXPECT_EQ(fit.halo.axial, 3);
+    const Rgb tint = haloTint(fit);
+    EXPECT_NEAR(tint.r, truth.r, 0.08);
+    EXPECT_NEAR(tint.g, truth.g, 0.08);
+    EXPECT_NEAR(tint.b, truth.b, 0.08);
+    for (const FaceFigures& f : fit.faces) EXPECT_LT(f.dE, 2.5) << "face " << f.name;
 }
 
 TEST(WoodFit, FindsTheDarkRingsOfABakedKnot) {

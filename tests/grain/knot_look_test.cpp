@@ -164,5 +164,60 @@ TEST(KnotLook, BarkRingIsFilteredOverTheFootprint) {
     EXPECT_NEAR(peak, c.deadKnotRimWidth / footprint, 0.01);
 }
 
+// The halo round a knot (colour.knots.halo_*): full at the knot's edge, reaching between half
+// and one and a half widths out across the stem (its patches), three times that along it; the
+// knot's own wood keeps its own tint, and a white halo leaves the wood as it was.
+TEST(KnotLook, HaloReachesItsWidthAcrossTheStemAndFartherAlongIt) {
+    Skeleton sk = branchTree(kNeverDies);
+    SkeletonIndex index(sk);
+    const GrowthField field = makeField(index);
+    ColourParams c;
+    c.heartwood = false;
+    c.knotHaloTint = {0.7, 0.5, 0.4};
+    c.knotHaloWidth = 0.004;
+    c.knotHaloAxial = 3;
+    const double w = c.knotHaloWidth;
+    auto haloAt = [&](double x, double phi, double r) {
+        const Vec3 p = onRay(x, phi, r);
+        return knotHalo(field.evaluate(p), p, c);
+    };
+    // Along the stem (the trunk is vertical) and across it, on both sides.
+    double alongSum = 0, acrossSum = 0;
+    for (double x : {0.03, 0.04, 0.05, 0.06, 0.07}) {
+        for (double phi : {0.0, std::numbers::pi}) {
+            const double edge = visibleEdge(field, x, phi);
+            EXPECT_EQ(haloAt(x, phi, 0.9 * edge), 1) << "x " << x;
+            EXPECT_GT(haloAt(x, phi, edge + 0.45 * w), 0) << "x " << x;
+            EXPECT_EQ(haloAt(x, phi, edge + 1.55 * w), 0) << "x " << x;
+            for (double r = edge; r < edge + 2 * w; r += w / 100) acrossSum += haloAt(x, phi, r);
+        }
+        for (double phi : {0.5 * std::numbers::pi, 1.5 * std::numbers::pi}) {
+            const double edge = visibleEdge(field, x, phi);
+            EXPECT_GT(haloAt(x, phi, edge + 1.45 * w), 0) << "x " << x;
+            EXPECT_EQ(haloAt(x, phi, edge + 4.6 * w), 0) << "x " << x;
+            for (double r = edge; r < edge + 6 * w; r += w / 100) alongSum += haloAt(x, phi, r);
+        }
+    }
+    EXPECT_GT(alongSum / acrossSum, 2.0);
+    EXPECT_LT(alongSum / acrossSum, 4.5);
+    // The knot's own wood (its share past the tint's smoothstep) is not tinted by the halo; the
+    // stem just outside the edge is, by the tint; a white halo changes nothing.
+    ColourParams white = c;
+    white.knotHaloTint = {1, 1, 1};
+    const double edge = visibleEdge(field, 0.05, 0);
+    const Vec3 inside = onRay(0.05, 0, 0.3 * edge), outside = onRay(0.05, 0, edge + 0.1 * w);
+    const GrowthSample in = field.evaluate(inside), out = field.evaluate(outside);
+    ASSERT_GE(in.knot, 0.75);
+    EXPECT_EQ(woodColour(in, inside, c, 0.5, 0).b, woodColour(in, inside, white, 0.5, 0).b);
+    const Rgb tinted = woodColour(out, outside, c, 0.5, 0),
+              plain = woodColour(out, outside, white, 0.5, 0);
+    const double weight = (1 - knotLook(out, c).tint) * knotHalo(out, outside, c);
+    EXPECT_GT(weight, 0.5);
+    EXPECT_NEAR(tinted.b, plain.b * (1 - weight * (1 - 0.4)), 1e-12);
+    GrowthSample clear;
+    clear.T = 5.5;
+    EXPECT_EQ(knotHalo(clear, outside, c), 0);
+}
+
 }  // namespace
 }  // namespace nenrin
