@@ -10,6 +10,7 @@
 #include "fit/anatomy_tone.h"
 #include "fit/cross_dating.h"
 #include "fit/end_grain_tint.h"
+#include "fit/fitted_grain.h"
 #include "fit/knot_colour.h"
 #include "fit/knot_halo.h"
 #include "fit/knot_rings.h"
@@ -47,38 +48,6 @@ Skeleton pithSkeleton(const PithLine& pith, const RadialRings& profile) {
     s.addTrunk({pith.point - pith.direction * reach, pith.point + pith.direction * reach}, {0, 0});
     s.setRingWidths(ringSeries(profile.boundaries, profile.outerRadius));
     return s;
-}
-
-nlohmann::json fittedGrain(const std::string& base, const Sample& sample,
-                           const RadialRings& profile) {
-    nlohmann::json grain = base.empty() ? nlohmann::json::object() : parseJsonFile(base);
-    if (!grain.is_object()) throw InputError(base, "", "expected a grain file (a JSON object)");
-    parseGrain(grain, base);  // a valid grain file, or the error names it
-    // The ring geometry is the fit's: the skeleton's line and ring series and the warp. The
-    // base's own ring shapes (sway, wander, eccentric growth, ageing, taper, a ring-width
-    // model) would move the rings off the photographed ones.
-    for (const char* key : {"sway", "wander", "direction", "age", "taper", "rings", "warp"})
-        grain.erase(key);
-    const ColourStrip& s = profile.strip;
-    const std::vector<double>& b = profile.boundaries;
-    grain["radial_speed"] = rounded((b.back() - b.front()) / double(b.size() - 1), 1e-6);
-    nlohmann::json& colour = grain["colour"];
-    if (!colour.is_object()) colour = nlohmann::json::object();
-    colour["early_wood"] = colourJson(s.earlyWood);
-    colour["late_wood"] = colourJson(s.lateWood);
-    nlohmann::json shape = nlohmann::json::array();
-    for (double e : s.lateWoodProfile) shape.push_back(rounded(e, 1e-3));
-    colour["late_wood_profile"] = shape;
-    // A sample a few centimetres across is heartwood or sapwood, rarely both: its colour is
-    // the early and late wood above.
-    colour["heartwood"] = {{"enabled", false}};
-    grain["reference"] = {{"fit", sample.file},
-                          {"base", base},
-                          {"rings", s.rings},
-                          {"ring_width_cv", s.widthStatistics.cv},
-                          {"early_wood_lab", {s.early.L, s.early.a, s.early.b}},
-                          {"late_wood_lab", {s.late.L, s.late.a, s.late.b}}};
-    return grain;
 }
 
 /// Rounds of colour calibration at most.

@@ -77,7 +77,7 @@ struct TextureStrengths {
 
 /// The halo round the knots as fitted (fit/knot_halo.h).
 struct HaloFit {
-    bool kept = false;  ///< the halo is in the grain
+    bool kept = false;  ///< the fitted halo is in the grain (not the base grain's, nor none)
     double width = 0;   ///< m across the stem
     double axial = 0;   ///< its stretch along the stem
     int bakes = 0;      ///< bakes it took

@@ -16,6 +16,8 @@ namespace {
 /// The halo's patches: a value noise on a lattice of 1.5 halo widths varies its reach by half.
 constexpr double kHaloNoiseScale = 1.5, kHaloPatchiness = 0.5;
 constexpr uint64_t kHaloSalt = 0x4a10;
+/// The knot share under which the halo fades out with the branch's term.
+constexpr double kHaloShareFade = 0.1;
 
 /// A radial drying check of a dead knot: a crack in the plane through the branch's axis at
 /// the knot's own seeded azimuth, opening from the pith outward and closing at the bark.
@@ -79,7 +81,11 @@ double knotHalo(const GrowthSample& s, const Vec3& treePoint, const ColourParams
     const double patch =
         1 + kHaloPatchiness * valueNoise(hashCombine(c.microSeed, kHaloSalt), q.x, q.y, q.z);
     const double reach = patch * c.knotHaloWidth * d / std::max(stretched, 1e-12 * d);
-    return 1 - smoothstep(0.0, 1.0, (d - s.knotRadius) / reach);
+    // Where the branch's term leaves the junction's reach the field names no chain: faded out
+    // with its share there, or the halo would end in a drawn edge (a dead knot's term, its
+    // time raised by dieback, leaves it a few millimetres out).
+    return (1 - smoothstep(0.0, 1.0, (d - s.knotRadius) / reach)) *
+           smoothstep(0.0, kHaloShareFade, s.knot);
 }
 
 }  // namespace nenrin

@@ -28,8 +28,9 @@ KnotLook knotLook(const GrowthSample& sample, const ColourParams& colour, double
 /// to the knot's edge, fading to 0 `knotHaloWidth` beyond it across the stem and
 /// `knotHaloAxial` times that along it, the reach varied by half either way by a value noise
 /// of the halo's own scale so that its edge is patchy, as resin soaks in. The caller keeps it
-/// off the knot wood, which has its own tint. 0 where the field names no branch (out of every
-/// branch's reach) or the width is 0.
+/// off the knot wood, which has its own tint. Faded out where the knot share falls under 0.1
+/// (the branch's term leaving the junction's reach); 0 where the field names no branch or the
+/// width is 0.
 double knotHalo(const GrowthSample& sample, const Vec3& treePoint, const ColourParams& colour);
 
 }  // namespace nenrin
