@@ -6,7 +6,6 @@
 #include <limits>
 
 #include "fit/end_grain_tint.h"
-#include "grain/grain_params.h"
 
 namespace nenrin {
 
@@ -104,18 +103,7 @@ HaloFit matchKnotHalo(nlohmann::json& grain, std::vector<FaceFigures>& faces,
                       const std::function<std::vector<FaceFigures>()>& rebake) {
     HaloFit out;
     const nlohmann::json before = grain;
-    const std::vector<FaceFigures> bakedBefore = faces;
-    // The probes' weights are read against bakes without a halo: a base grain's own (the
-    // hinoki preset's) is taken off first, and kept only if it matches better than the fit's.
-    std::vector<FaceFigures> plain = faces;
-    nlohmann::json without = grain;
-    const bool hadHalo = parseGrain(grain, "the fitted grain").colour.knotHaloTint != Rgb{1, 1, 1};
-    if (hadHalo) {
-        without["colour"]["knots"]["halo_tint"] = colourJson({1, 1, 1});
-        grain = without;
-        plain = rebake();
-        ++out.bakes;
-    }
+    const std::vector<FaceFigures> plain = faces;
     Candidate best;
     auto tryReach = [&](double width, double axial) {
         setHalo(grain, {kProbe, kProbe, kProbe}, width, axial);
@@ -130,25 +118,19 @@ HaloFit matchKnotHalo(nlohmann::json& grain, std::vector<FaceFigures>& faces,
         const double width = best.width;
         for (double axial : kOtherAxials) tryReach(width, axial);
     }
-    // The best of: the grain as it came, without a halo, with the fitted one.
-    nlohmann::json chosen = before;
-    std::vector<FaceFigures> chosenFaces = bakedBefore;
-    if (hadHalo && colourMisfit(plain) < colourMisfit(chosenFaces))
-        chosen = without, chosenFaces = plain;
-    if (std::isfinite(best.residual) && best.residual < 0) {
-        grain = without;
-        setHalo(grain, best.tint, best.width, best.axial);
-        std::vector<FaceFigures> fitted = rebake();
-        ++out.bakes;
-        if (colourMisfit(fitted) < colourMisfit(chosenFaces)) {
-            out.kept = true;
-            out.width = best.width;
-            out.axial = best.axial;
-            chosen = grain, chosenFaces = std::move(fitted);
-        }
+    grain = before;
+    if (!std::isfinite(best.residual) || best.residual >= 0) return out;
+    setHalo(grain, best.tint, best.width, best.axial);
+    std::vector<FaceFigures> fitted = rebake();
+    ++out.bakes;
+    if (!(colourMisfit(fitted) < colourMisfit(plain))) {
+        grain = before;
+        return out;
     }
-    grain = chosen;
-    faces = std::move(chosenFaces);
+    out.kept = true;
+    out.width = best.width;
+    out.axial = best.axial;
+    faces = std::move(fitted);
     return out;
 }
 

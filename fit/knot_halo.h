@@ -16,12 +16,11 @@ namespace nenrin {
 /// For each candidate reach: one bake with a grey probe tint gives each pixel's halo weight w
 /// (its colour over the bake without a halo is 1 - w / 2), and the tint t per channel is the
 /// least-squares fit of photo = bake x (1 + w (t - 1)) over the fitted faces' pixels. The
-/// candidate with the smallest residual is baked with its tint; of it, the grain as it came
-/// (with a halo of its own, which the weights are read without: one bake more) and the grain
-/// without a halo, the one whose fitted faces' colours match best (fewer over 5 dE*ab, or as
-/// many and a lower RMS difference) is kept. `faces` are the bakes of `grain`, `rebake` bakes
-/// them again from it; both are left as they were when the grain as it came wins. Does
-/// nothing without knots in the bakes' reach.
+/// candidate with the smallest residual is baked with its tint and kept if the fitted faces'
+/// colours then match better (fewer over 5 dE*ab, or as many and a lower RMS difference).
+/// `grain` has no halo of its own (fittedGrain leaves the base grain's out); `faces` are its
+/// bakes, `rebake` bakes them again from it; both are left as they were when no halo is kept.
+/// Does nothing without knots in the bakes' reach.
 HaloFit matchKnotHalo(nlohmann::json& grain, std::vector<FaceFigures>& faces,
                       const std::function<std::vector<FaceFigures>()>& rebake);
 

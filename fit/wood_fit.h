@@ -77,9 +77,9 @@ struct TextureStrengths {
 
 /// The halo round the knots as fitted (fit/knot_halo.h).
 struct HaloFit {
-    bool kept = false;  ///< the fitted halo is in the grain (not the base grain's, nor none)
-    double width = 0;   ///< m across the stem
-    double axial = 0;   ///< its stretch along the stem
+    bool kept = false;  ///< the fitted halo is in the grain
+    double width = 0;   ///< m across the stem (0 when not kept)
+    double axial = 0;   ///< its stretch along the stem (0 when not kept)
     int bakes = 0;      ///< bakes it took
 };
 

@@ -69,11 +69,19 @@ KnotLook knotLook(const GrowthSample& s, const ColourParams& c, double footprint
 
 double knotHalo(const GrowthSample& s, const Vec3& treePoint, const ColourParams& c) {
     if (s.knotChain < 0 || c.knotHaloWidth <= 0 || s.knotRadius <= 0) return 0;
+    // Where the branch's term leaves the junction's reach the field names no chain: faded out
+    // with its share there, or the halo would end in a drawn edge (a dead knot's term, its
+    // time raised by dieback, leaves it a few millimetres out).
+    const double fade = smoothstep(0.0, kHaloShareFade, s.knot);
     const double d = s.knotAxisDistance;
-    if (d <= s.knotRadius) return 1;
-    // An ellipse about the branch's axis, stretched along the stem's: on this ray the halo
-    // reaches width x d / stretched beyond the knot's edge.
-    const double along = dot(s.knotOffset, normalize(s.axisDirection));
+    if (d <= s.knotRadius) return fade;
+    // An ellipse about the branch's axis, stretched along the stem's as seen in the branch's
+    // cross-section (the stem's direction less its part along the branch, so that a slanting
+    // branch's halo is stretched as much): on this ray the halo reaches width x d / stretched
+    // beyond the knot's edge.
+    const Vec3 branch = normalize(s.knotAxisDirection);
+    const Vec3 stem = normalize(s.axisDirection - branch * dot(s.axisDirection, branch));
+    const double along = dot(s.knotOffset, stem);
     const double across2 = std::max(0.0, d * d - along * along);
     const double stretched =
         std::sqrt(across2 + along * along / (c.knotHaloAxial * c.knotHaloAxial));
@@ -81,11 +89,7 @@ double knotHalo(const GrowthSample& s, const Vec3& treePoint, const ColourParams
     const double patch =
         1 + kHaloPatchiness * valueNoise(hashCombine(c.microSeed, kHaloSalt), q.x, q.y, q.z);
     const double reach = patch * c.knotHaloWidth * d / std::max(stretched, 1e-12 * d);
-    // Where the branch's term leaves the junction's reach the field names no chain: faded out
-    // with its share there, or the halo would end in a drawn edge (a dead knot's term, its
-    // time raised by dieback, leaves it a few millimetres out).
-    return (1 - smoothstep(0.0, 1.0, (d - s.knotRadius) / reach)) *
-           smoothstep(0.0, kHaloShareFade, s.knot);
+    return (1 - smoothstep(0.0, 1.0, (d - s.knotRadius) / reach)) * fade;
 }
 
 }  // namespace nenrin

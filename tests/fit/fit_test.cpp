@@ -390,14 +390,15 @@ TEST(WoodFit, PutsTheBranchOfABakedKnotThroughBothFacesItCrosses) {
     // find, step 10) where the bake has none.
     const WoodFit fit = expectBakedKnotFitted("knot", 0, 0.25);
     EXPECT_LT(ringDarkening(fit), 0.1);
-    const Rgb halo = haloTint(fit);
-    EXPECT_GT(std::min({halo.r, halo.g, halo.b}), 0.9);
+    EXPECT_FALSE(fit.halo.kept);
+    EXPECT_EQ(haloTint(fit).b, 1.0);
 }
 
 TEST(WoodFit, FindsTheOrangeHaloRoundABakedKnot) {
     // The knot cube baked with an orange halo 6 mm wide, three times that along the stem,
-    // fitted from the preset (whose halo is H11's: 10 mm, 1.5 x, a deeper orange): its reach
-    // and tint are found, and the faces' colours match as well as without one.
+    // fitted from the hinoki preset (its own halo, H11's, left out): the reach and the tint
+    // are found (the tint a little light: it is fitted against bakes whose colours were
+    // calibrated to the stained photographs), and every face's colour matches.
     const ScratchFolder folder("fit-halo");
     const Rgb truth{0.8, 0.6, 0.45};
     const SyntheticSample baked = bakeSyntheticSample(

@@ -219,5 +219,40 @@ TEST(KnotLook, HaloReachesItsWidthAcrossTheStemAndFartherAlongIt) {
     EXPECT_EQ(knotHalo(clear, outside, c), 0);
 }
 
+// A branch rising at 45 degrees: its cross-section holds the stem's direction only in part,
+// and the halo is stretched along that part as much as about a level branch.
+TEST(KnotLook, HaloOfASlantingBranchIsStretchedAlongTheStemToo) {
+    const Vec3 up = normalize(Vec3{1, 0, 1});
+    ChainProperties props;
+    props.gamma = 0.3;
+    Skeleton sk = test::trunkWithBranch(kHeight, up, 1.0, props, 10, kSa);
+    SkeletonIndex index(sk);
+    const GrowthField field = makeField(index);
+    ColourParams c;
+    c.knotHaloTint = {0.7, 0.5, 0.4};
+    c.knotHaloWidth = 0.004;
+    c.knotHaloAxial = 3;
+    // In the branch's cross-section: the stem's direction as seen there, and across it.
+    const Vec3 stem = normalize(Vec3{-1, 0, 1}), across{0, 1, 0};
+    double alongSum = 0, acrossSum = 0;
+    for (double out : {0.05, 0.07, 0.09}) {
+        const Vec3 axis = Vec3{0, 0, kHeight} + up * out;
+        for (const Vec3& ray : {stem, stem * -1.0, across, across * -1.0}) {
+            double lo = 0, hi = 0.05;  // the knot's visible edge on this ray
+            for (int i = 0; i < 60; ++i) {
+                const double mid = 0.5 * (lo + hi);
+                (field.evaluate(axis + ray * mid).knot > 0.5 ? lo : hi) = mid;
+            }
+            const bool alongStem = std::abs(dot(ray, stem)) > 0.5;
+            for (double r = lo; r < lo + 6 * c.knotHaloWidth; r += c.knotHaloWidth / 100) {
+                const Vec3 p = axis + ray * r;
+                (alongStem ? alongSum : acrossSum) += knotHalo(field.evaluate(p), p, c);
+            }
+        }
+    }
+    ASSERT_GT(acrossSum, 0);
+    EXPECT_GT(alongSum / acrossSum, 2.0);
+}
+
 }  // namespace
 }  // namespace nenrin
