@@ -9,10 +9,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "grain/grain_params.h"
 #include "grain/growth_field.h"
 #include "grain/wood_colour.h"
 #include "skeleton/skeleton_index.h"
 #include "tests/test_trees.h"
+#include "util/input_error.h"
 
 namespace nenrin {
 namespace {
@@ -252,6 +254,24 @@ TEST(KnotLook, HaloOfASlantingBranchIsStretchedAlongTheStemToo) {
     }
     ASSERT_GT(acrossSum, 0);
     EXPECT_GT(alongSum / acrossSum, 2.0);
+}
+
+// The halo's keys are written back as read, and out of range they are refused.
+TEST(KnotLook, HaloKeysRoundTripThroughTheGrainFile) {
+    GrainParams g;
+    g.colour.knotHaloTint = {0.69, 0.5, 0.36};
+    g.colour.knotHaloWidth = 0.012;
+    g.colour.knotHaloAxial = 2.5;
+    const GrainParams back = parseGrain(grainToJson(g), "g.json");
+    EXPECT_EQ(back.colour.knotHaloTint, g.colour.knotHaloTint);
+    EXPECT_EQ(back.colour.knotHaloWidth, 0.012);
+    EXPECT_EQ(back.colour.knotHaloAxial, 2.5);
+    nlohmann::json bad = grainToJson(g);
+    bad["colour"]["knots"]["halo_axial"] = 0.5;
+    EXPECT_THROW(parseGrain(bad, "g.json"), InputError);
+    bad = grainToJson(g);
+    bad["colour"]["knots"]["halo_tint"] = {0.5, 1.5, 0.5};
+    EXPECT_THROW(parseGrain(bad, "g.json"), InputError);
 }
 
 }  // namespace
