@@ -36,14 +36,20 @@ Vec3 onRay(double x, double phi, double r) {
     return {x, r * std::cos(phi), kHeight + r * std::sin(phi)};
 }
 
-/// Along a ray about the branch: where its share of the blend crosses one half.
-double visibleEdge(const GrowthField& field, double x, double phi) {
+/// Along the ray from `axis` (a point of the branch's axis) in direction `ray`: where the
+/// branch's share of the blend crosses one half.
+double edgeOnRay(const GrowthField& field, const Vec3& axis, const Vec3& ray) {
     double lo = 0, hi = 0.05;
     for (int i = 0; i < 60; ++i) {
-        double mid = 0.5 * (lo + hi);
-        (field.evaluate(onRay(x, phi, mid)).knot > 0.5 ? lo : hi) = mid;
+        const double mid = 0.5 * (lo + hi);
+        (field.evaluate(axis + ray * mid).knot > 0.5 ? lo : hi) = mid;
     }
     return lo;
+}
+
+/// The same on a ray about the level branch of branchTree.
+double visibleEdge(const GrowthField& field, double x, double phi) {
+    return edgeOnRay(field, onRay(x, phi, 0), onRay(x, phi, 1) - onRay(x, phi, 0));
 }
 
 GrowthField makeField(const SkeletonIndex& index) {
@@ -240,11 +246,7 @@ TEST(KnotLook, HaloOfASlantingBranchIsStretchedAlongTheStemToo) {
     for (double out : {0.05, 0.07, 0.09}) {
         const Vec3 axis = Vec3{0, 0, kHeight} + up * out;
         for (const Vec3& ray : {stem, stem * -1.0, across, across * -1.0}) {
-            double lo = 0, hi = 0.05;  // the knot's visible edge on this ray
-            for (int i = 0; i < 60; ++i) {
-                const double mid = 0.5 * (lo + hi);
-                (field.evaluate(axis + ray * mid).knot > 0.5 ? lo : hi) = mid;
-            }
+            const double lo = edgeOnRay(field, axis, ray);  // the knot's visible edge
             const bool alongStem = std::abs(dot(ray, stem)) > 0.5;
             for (double r = lo; r < lo + 6 * c.knotHaloWidth; r += c.knotHaloWidth / 100) {
                 const Vec3 p = axis + ray * r;
