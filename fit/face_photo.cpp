@@ -36,8 +36,11 @@ FacePhoto readFacePhoto(const SampleFace& face, int step) {
                                      image.sourceWidth, image.sourceHeight,
                                      length(face.right) * 1e3, length(face.up) * 1e3));
     f.linear = image.linear;
-    f.lightness = labPlanes(f.linear)[0];
-    const GrainStructure s = grainStructure(f.lightness);
+    const std::array<Plane, 3> lab = labPlanes(f.linear);
+    f.lightness = lab[0];
+    f.structure = grainStructure(f.lightness);
+    f.figures = roundedAsReported(imageStatistics(lab));
+    const GrainStructure& s = f.structure;
     // Image x runs along `right`, image y down, against `up`.
     const Vec3 right = normalize(face.right), down = normalize(face.up) * -1.0;
     const Plane blurred = gaussianFilter(f.lightness, 2);

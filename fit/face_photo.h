@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fit/sample_file.h"
+#include "renderer/stats/image_statistics.h"
 #include "renderer/stats/ndimage_filters.h"
 
 namespace nenrin {
@@ -28,6 +29,10 @@ struct FacePhoto {
     /// long along the fibre direction, so on any face (end grain or side) these gradients
     /// lie across it.
     std::vector<Vec3> fineGradients;
+    /// Its structure tensor and figures (rounded as reported), measured once: each bake of
+    /// the face is compared with them (ring agreement, colour, texture energy).
+    GrainStructure structure;
+    ImageStatistics figures;
     /// The sample position of pixel (column x, row y) of the 256 x 256 planes: the pixel
     /// centres of the first and last rows and columns lie on the face's edges.
     Vec3 position(int x, int y) const;

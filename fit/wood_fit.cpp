@@ -77,15 +77,15 @@ FaceFigures measureFace(const WoodShader& shader, const Skeleton& skeleton, cons
             for (int c = 0; c < 3; ++c) rgb[size_t(c)].at(x, y) = std::max(0.0f, v[c]);
             growthTime.at(x, y) = v[4];
         }
-    const RingAgreement rings = ringAgreement(photo.lightness, growthTime, face.image);
+    const RingAgreement rings = ringAgreement(photo.structure, growthTime, face.image);
     f.ringMedianDeg = rings.medianDeg;
     f.ringWithin15 = rings.within15;
     const std::array<Plane, 3> bakedLab = labPlanes(rgb);
     f.lightness = bakedLab[0];
-    const ImageStatistics baked = roundedAsReported(imageStatistics(bakedLab));
-    const ImageStatistics photographed =
-        roundedAsReported(imageStatistics(labPlanes(photo.linear)));
-    const StatisticsAgainst against = statisticsAgainst(baked, photographed, face.image);
+    // (The fit compares colour and texture energy only: dir_spread and fine_aniso stay 0.)
+    const ImageStatistics baked =
+        roundedAsReported(imageStatistics(bakedLab, Figures::kColourAndEnergy));
+    const StatisticsAgainst against = statisticsAgainst(baked, photo.figures, face.image);
     f.dE = against.dE;
     f.fineRatio = against.fineRatio;
     f.midRatio = against.midRatio;

@@ -91,17 +91,19 @@ GrainStructure grainStructure(const Plane& lightness) {
     return s;
 }
 
-ImageStatistics imageStatistics(const std::array<Plane, 3>& lab) {
+ImageStatistics imageStatistics(const std::array<Plane, 3>& lab, Figures figures) {
     const Plane& lightness = lab[0];
     ImageStatistics s;
     for (size_t c = 0; c < 3; ++c) s.lab[c] = mean(lab[c].values);
     s.stdL = populationStd(lightness.values);
-    s.dirSpread = directionSpread(grainStructure(lightness).angle2);
     const Plane blur4 = gaussianFilter(lightness, 4), blur16 = gaussianFilter(lightness, 16);
     const Plane fine = difference(lightness, blur4);
     s.fine = populationStd(fine.values);
     s.mid = populationStd(difference(blur4, blur16).values);
-    s.fineAniso = fineAnisotropy(fine);
+    if (figures == Figures::kAll) {
+        s.dirSpread = directionSpread(grainStructure(lightness).angle2);
+        s.fineAniso = fineAnisotropy(fine);
+    }
     return s;
 }
 
@@ -150,7 +152,11 @@ double weightedMedian(const std::vector<double>& values, const std::vector<doubl
 
 RingAgreement ringAgreement(const Plane& photoLightness, const Plane& growthTime,
                             const std::string& photoPath) {
-    const GrainStructure photo = grainStructure(photoLightness);
+    return ringAgreement(grainStructure(photoLightness), growthTime, photoPath);
+}
+
+RingAgreement ringAgreement(const GrainStructure& photo, const Plane& growthTime,
+                            const std::string& photoPath) {
     const Plane t = gaussianFilter(growthTime, 2);
     const Plane ty = sobel(t, 0), tx = sobel(t, 1);
     constexpr int kBorder = 16;

@@ -44,8 +44,13 @@ struct GrainStructure {
 };
 GrainStructure grainStructure(const Plane& lightness);
 
+/// Which figures imageStatistics computes: all, or only the mean colour, std_L, fine and mid
+/// (dir_spread and fine_aniso left 0: they take four fifths of the filtering, and a caller
+/// comparing colour and texture energy alone, as the fit does bake after bake, needs neither).
+enum class Figures { kAll, kColourAndEnergy };
+
 /// The figures of an image from its L*, a*, b* planes.
-ImageStatistics imageStatistics(const std::array<Plane, 3>& lab);
+ImageStatistics imageStatistics(const std::array<Plane, 3>& lab, Figures figures = Figures::kAll);
 
 /// The figures rounded as the script reports them (lab 2 decimals, std_L, fine and mid 3,
 /// dir_spread and fine_aniso 2; fine_aniso capped at 10^4).
@@ -62,6 +67,9 @@ StatisticsAgainst statisticsAgainst(const ImageStatistics& image, const ImageSta
 /// rounded as reported (median 2 decimals, share 3). Throws InputError naming `photoPath` if
 /// the photo has no structure to weigh by (a flat image).
 RingAgreement ringAgreement(const Plane& photoLightness, const Plane& growthTime,
+                            const std::string& photoPath);
+/// The same from the photo's grainStructure, for a photo measured against many fields.
+RingAgreement ringAgreement(const GrainStructure& photo, const Plane& growthTime,
                             const std::string& photoPath);
 
 /// The script's weighted median: values sorted, the first whose cumulative weight reaches half

@@ -61,6 +61,24 @@ TEST(ImageStatistics, UniformNoiseHasFineAnisotropyNearOne) {
     EXPECT_NEAR(s.stdL, 20 / std::sqrt(12.0), 0.2);
 }
 
+// The colour-and-energy figures are the full set's to the bit, less dir_spread and fine_aniso
+// (left 0): the fit compares bake after bake by them alone.
+TEST(ImageStatistics, ColourAndEnergyFiguresAreTheFullSetsWithoutTheDirections) {
+    SplitMix rng(11);
+    std::array<Plane, 3> lab = lightnessOnly(stripes(9, 20));
+    for (double& v : lab[0].values) v += 5 * rng.uniform();
+    for (double& v : lab[1].values) v = 10 + rng.uniform();
+    const ImageStatistics all = imageStatistics(lab);
+    const ImageStatistics some = imageStatistics(lab, Figures::kColourAndEnergy);
+    for (size_t c = 0; c < 3; ++c) EXPECT_EQ(some.lab[c], all.lab[c]);
+    EXPECT_EQ(some.stdL, all.stdL);
+    EXPECT_EQ(some.fine, all.fine);
+    EXPECT_EQ(some.mid, all.mid);
+    EXPECT_GT(all.fineAniso, 1);
+    EXPECT_EQ(some.fineAniso, 0);
+    EXPECT_EQ(some.dirSpread, 0);
+}
+
 /// Writes a constant 8-bit PNG of `w` x `h` pixels.
 fs::path constantPng(const std::string& name, int w, int h, std::array<uint8_t, 3> rgb) {
     const fs::path path = scratchPath(name);
@@ -130,6 +148,11 @@ TEST(ImageStatistics, RingsAlongTheGrowthTimeAgree) {
     EXPECT_GT(across.medianDeg, 89);
     EXPECT_LT(across.within15, 0.01);
     EXPECT_THROW(ringAgreement(Plane(kStatsSize, kStatsSize, 50), t, "flat.png"), InputError);
+    // From the photo's structure, measured once: the same figures.
+    const RingAgreement fromStructure =
+        ringAgreement(grainStructure(stripes(12, 0)), t, "photo.png");
+    EXPECT_EQ(fromStructure.medianDeg, along.medianDeg);
+    EXPECT_EQ(fromStructure.within15, along.within15);
 }
 
 TEST(ImageStatistics, RatiosAreTakenOfTheReportedFigures) {
