@@ -40,14 +40,28 @@ nlohmann::json fittedGrain(const std::string& base, const Sample& sample,
     colour["heartwood"] = {{"enabled", false}};
     // The base's halo round the knots (the hinoki preset's) is the fit's to find (step 10):
     // until then it would widen the bakes' dark knot wood, which sizes and aims the branches.
-    if (colour.contains("knots") && colour["knots"].is_object())
+    // Its knots' ring wobble is a look the fit neither measures nor needs, and its bakes' knots
+    // are found and aimed by their rings, which wobbling rings blur (the synthetic knot cube's
+    // F knot read 18 mm off at 0.5 years): the fit bakes circles, and fitSample puts the
+    // base's wobble back into the grain it writes.
+    if (colour.contains("knots") && colour["knots"].is_object()) {
         colour["knots"]["halo_tint"] = colourJson({1, 1, 1});
+        colour["knots"].erase("ring_wobble");
+    }
     grain["reference"] = {{"fit", sample.file},
                           {"base", base},
                           {"rings", s.rings},
                           {"ring_width_cv", s.widthStatistics.cv},
                           {"early_wood_lab", {s.early.L, s.early.a, s.early.b}},
                           {"late_wood_lab", {s.late.L, s.late.a, s.late.b}}};
+    return grain;
+}
+
+nlohmann::json withBaseLook(nlohmann::json grain, const std::string& base) {
+    if (base.empty()) return grain;
+    const GrainParams look = parseGrain(parseJsonFile(base), base);
+    if (look.colour.knotRingWobble > 0)
+        grain["colour"]["knots"]["ring_wobble"] = look.colour.knotRingWobble;
     return grain;
 }
 

@@ -12,9 +12,14 @@ namespace nenrin {
 
 /// `base`: a grain file ("" for the defaults). The base's ring shapes (sway, wander, eccentric
 /// growth, ageing, taper, a ring-width model, a warp) are taken out, its heartwood off, its
-/// knots' halo off (step 10 of docs/fit.md finds one); the early and late wood, their profile
-/// and the radial speed are the measured rings'.
+/// knots' halo off (step 10 of docs/fit.md finds one) and their rings' wobble off (given back
+/// by withBaseLook); the early and late wood, their profile and the radial speed are the
+/// measured rings'.
 nlohmann::json fittedGrain(const std::string& base, const Sample& sample,
                            const RadialRings& profile);
+
+/// The fitted grain with the base's look that the fit's bakes go without: its knots' ring
+/// wobble (colour.knots.ring_wobble), if it has one.
+nlohmann::json withBaseLook(nlohmann::json grain, const std::string& base);
 
 }  // namespace nenrin

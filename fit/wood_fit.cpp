@@ -481,6 +481,7 @@ WoodFit fitSample(const Sample& sample, const FitOptions& options) {
         colourKnots(fit, photos, options);
     }
     fit.knots = knotFigures(photos, centres, fit.faces, fit.pith);
+    fit.grain = withBaseLook(std::move(fit.grain), fit.base);
     if (options.baseGrains.empty())
         fit.warnings.push_back(
             "no base grain (--grain): the bakes carry no anatomy (fibres, pores, rays); give "

@@ -196,7 +196,8 @@ void readLateWoodProfile(JsonReader& c, ColourParams& cp) {
                                                            i, cp.lateWoodProfile[i]));
 }
 
-/// Knot colours: darkening, core, a dead knot's rim and checks, tints, the halo round them.
+/// Knot colours: darkening, core, a dead knot's rim and checks, tints, the halo round them,
+/// the rings' wobble.
 void readKnotColours(JsonReader& k, ColourParams& cp) {
     cp.knotDarkening = k.inRange("darkening", cp.knotDarkening, 0, 1);
     cp.deadKnotDarkening = k.inRange("dead_darkening", cp.deadKnotDarkening, 0, 1);
@@ -211,6 +212,8 @@ void readKnotColours(JsonReader& k, ColourParams& cp) {
     cp.knotHaloTint = readRgb(k, "halo_tint", cp.knotHaloTint, 0);
     cp.knotHaloWidth = k.inRange("halo_width", cp.knotHaloWidth, 0, 0.1);
     cp.knotHaloAxial = k.inRange("halo_axial", cp.knotHaloAxial, 1, 20);
+    cp.knotRingWobble = k.inRange("ring_wobble", cp.knotRingWobble, 0, 2);
+    cp.knotRingWobbleScale = k.inRange("ring_wobble_scale", cp.knotRingWobbleScale, 0.0005, 0.05);
     k.finish();
 }
 
@@ -310,7 +313,9 @@ nlohmann::json colourJson(const ColourParams& c) {
           {"dead_tint", rgbJson(c.deadKnotTint)},
           {"halo_tint", rgbJson(c.knotHaloTint)},
           {"halo_width", c.knotHaloWidth},
-          {"halo_axial", c.knotHaloAxial}}},
+          {"halo_axial", c.knotHaloAxial},
+          {"ring_wobble", c.knotRingWobble},
+          {"ring_wobble_scale", c.knotRingWobbleScale}}},
         {"end_grain", endGrainJson(c)}};
     // No measured profile: the key left out (a file cannot hold an empty one).
     if (c.lateWoodProfile.empty()) j.erase("late_wood_profile");

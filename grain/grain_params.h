@@ -93,6 +93,10 @@ struct ColourParams {
     Rgb knotHaloTint{1, 1, 1};
     double knotHaloWidth = 0.005;
     double knotHaloAxial = 3;
+    /// A knot's rings are not the perfect circles a straight branch axis draws: the years by
+    /// which a value noise of `knotRingWobbleScale` m moves them, inside knots (0 = circles).
+    double knotRingWobble = 0;
+    double knotRingWobbleScale = 0.003;
     /// End grain measures darker and redder than side grain (Hirata et al. 2020, 60 species):
     /// open cell ends trap light. At a surface cut across the fibre the albedo's green and
     /// blue are multiplied by 1 - endGrainDarkening, its red by 1 - endGrainDarkening x

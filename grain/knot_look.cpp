@@ -18,6 +18,10 @@ constexpr double kHaloNoiseScale = 1.5, kHaloPatchiness = 0.5;
 constexpr uint64_t kHaloSalt = 0x4a10;
 /// The knot share under which the halo fades out with the branch's term.
 constexpr double kHaloShareFade = 0.1;
+constexpr uint64_t kWobbleSalt = 0x4a11;
+
+/// The knot tint's weight: how far P is inside the knot by the branch's share.
+double insideKnot(const GrowthSample& s) { return smoothstep(0.45, 0.75, s.knot); }
 
 /// A radial drying check of a dead knot: a crack in the plane through the branch's axis at
 /// the knot's own seeded azimuth, opening from the pith outward and closing at the bark.
@@ -47,7 +51,7 @@ KnotLook knotLook(const GrowthSample& s, const ColourParams& c, double footprint
     // Darkening follows the knot share; how much of it is the dead-knot kind follows the
     // fraction of the knot that is dead, so the live/dead change along a branch (where the
     // trunk reached it after its death) shifts the tone without drawing an edge.
-    const double inside = smoothstep(0.45, 0.75, s.knot);
+    const double inside = insideKnot(s);
     out.deadFraction = std::clamp(s.deadKnot / s.knot, 0.0, 1.0);
     out.tint = inside;
     // Where in the knot's section P lies: 0 at its pith, 1 at its edge (or a dead one's bark).
@@ -90,6 +94,19 @@ double knotHalo(const GrowthSample& s, const Vec3& treePoint, const ColourParams
         1 + kHaloPatchiness * valueNoise(hashCombine(c.microSeed, kHaloSalt), q.x, q.y, q.z);
     const double reach = patch * c.knotHaloWidth * d / std::max(stretched, 1e-12 * d);
     return (1 - smoothstep(0.0, 1.0, (d - s.knotRadius) / reach)) * fade;
+}
+
+double knotRingWobble(const GrowthSample& s, const Vec3& treePoint, const ColourParams& c) {
+    if (c.knotRingWobble <= 0 || s.knot <= 0) return 0;
+    const double inside = insideKnot(s);
+    if (inside <= 0) return 0;
+    const Vec3 q = treePoint * (1 / c.knotRingWobbleScale);
+    const uint64_t seed = hashCombine(c.microSeed, kWobbleSalt);
+    // Two octaves, the finer half as strong: one alone draws smooth, regular bulges.
+    const double n =
+        (valueNoise(seed, q.x, q.y, q.z) + 0.5 * valueNoise(seed + 1, 2 * q.x, 2 * q.y, 2 * q.z)) /
+        1.5;
+    return inside * c.knotRingWobble * n;
 }
 
 }  // namespace nenrin

@@ -33,4 +33,18 @@ KnotLook knotLook(const GrowthSample& sample, const ColourParams& colour, double
 /// width is 0.
 double knotHalo(const GrowthSample& sample, const Vec3& treePoint, const ColourParams& colour);
 
+/// Years to add to T where the colour reads the ring profile (the late-wood share): a knot's
+/// rings are not the perfect circles that the distance from a straight branch axis draws
+/// (H11's wobble, run closer and apart), so a value noise of `knotRingWobbleScale` (two
+/// octaves, tree space) moves them by up to `knotRingWobble` years, with the knot tint's
+/// weight: 0 outside knots, and the field's T (the knot's shape) is left as it is.
+double knotRingWobble(const GrowthSample& sample, const Vec3& treePoint,
+                      const ColourParams& colour);
+
+/// The time the ring profile is read at: T and, inside knots, knotRingWobble.
+inline double colourTime(const GrowthSample& sample, const Vec3& treePoint,
+                         const ColourParams& colour) {
+    return sample.T + knotRingWobble(sample, treePoint, colour);
+}
+
 }  // namespace nenrin

@@ -8,7 +8,8 @@
 namespace nenrin {
 
 Rgb woodColour(const GrowthSample& s, const Vec3& treePoint, const ColourParams& c) {
-    return woodColour(s, treePoint, c, lateWoodFraction(s.T, lateWoodShape(c)), 1.0);
+    return woodColour(s, treePoint, c,
+                      lateWoodFraction(colourTime(s, treePoint, c), lateWoodShape(c)), 1.0);
 }
 
 Rgb woodColour(const GrowthSample& s, const Vec3& treePoint, const ColourParams& c, double e,

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "grain/growth_terms.h"
+#include "grain/knot_look.h"
 #include "grain/wood_colour.h"
 #include "shader/bark.h"
 #include "shader/colour_line.h"
@@ -46,10 +47,11 @@ void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample
     for (size_t i = 0; i < treePoints.size(); ++i) {
         bool outside = felled > 0 && samples[i].T > felled;
         out[i].coverage = outside ? 0 : 1;
-        out[i].albedo = outside
-                            ? Rgb{}
-                            : woodColour(samples[i], treePoints[i], colour,
-                                         rings_.lateWood(timing.profileTime(samples[i].T)), 1.0);
+        out[i].albedo = outside ? Rgb{}
+                                : woodColour(samples[i], treePoints[i], colour,
+                                             rings_.lateWood(timing.profileTime(
+                                                 colourTime(samples[i], treePoints[i], colour))),
+                                             1.0);
         out[i].T = samples[i].T;
         out[i].knot = samples[i].knot;
     }
@@ -135,9 +137,10 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
             }
         }
         o.ringFilterWidth = width;
-        // The year's own late-wood share: the profile is read at the warped time.
+        // The year's own late-wood share: the profile is read at the warped time (inside a
+        // knot, wobbled: grain/knot_look.h).
         double warp = 1;
-        const double profileT = timing.profileTime(s.T, &warp);
+        const double profileT = timing.profileTime(colourTime(s, treePoints[i], colour), &warp);
         o.lateWood = rings_.filtered(profileT, width * warp);
 
         bool outside = felled > 0 && s.T > felled;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -14,6 +15,7 @@
 #include "grain/wood_colour.h"
 #include "skeleton/skeleton_index.h"
 #include "tests/test_trees.h"
+#include "util/hash.h"
 #include "util/input_error.h"
 
 namespace nenrin {
@@ -273,6 +275,55 @@ TEST(KnotLook, HaloKeysRoundTripThroughTheGrainFile) {
     EXPECT_THROW(parseGrain(bad, "g.json"), InputError);
     bad = grainToJson(g);
     bad["colour"]["knots"]["halo_tint"] = {0.5, 1.5, 0.5};
+    EXPECT_THROW(parseGrain(bad, "g.json"), InputError);
+}
+
+// A knot's rings wobble: inside the knot the ring profile is read at T moved by a value noise
+// of ring_wobble_scale, by at most ring_wobble years and by a good share of it on average;
+// outside the knot (and with the wobble 0) not at all. The keys round-trip.
+TEST(KnotLook, RingWobbleMovesTheRingsInsideTheKnotOnly) {
+    ColourParams c;
+    c.knotRingWobble = 0.5;
+    c.knotRingWobbleScale = 0.006;
+    GrowthSample inside;
+    inside.T = 7;
+    inside.knot = 1;
+    GrowthSample outside = inside;
+    outside.knot = 0.4;  // under the tint's weight
+    double sum2 = 0, largest = 0, near2 = 0, far = 0, farA2 = 0, farB2 = 0;
+    const int n = 4000;
+    SplitMix rng(3);
+    for (int i = 0; i < n; ++i) {
+        const Vec3 p{0.03 * rng.uniform(), 0.03 * rng.uniform(), 2 + 0.03 * rng.uniform()};
+        const double w = knotRingWobble(inside, p, c);
+        EXPECT_DOUBLE_EQ(colourTime(inside, p, c), 7 + w);
+        EXPECT_EQ(knotRingWobble(outside, p, c), 0);
+        sum2 += w * w;
+        largest = std::max(largest, std::abs(w));
+        // A tenth of the scale away it has barely moved; five scales away it is another draw.
+        const double dNear = knotRingWobble(inside, p + Vec3{0.0006, 0, 0}, c) - w;
+        near2 += dNear * dNear;
+        const double wFar = knotRingWobble(inside, p + Vec3{0.03, 0.01, 0}, c);
+        far += w * wFar, farA2 += w * w, farB2 += wFar * wFar;
+    }
+    const double rms = std::sqrt(sum2 / n);
+    EXPECT_LE(largest, 0.5);
+    EXPECT_GT(largest, 0.25);
+    EXPECT_GT(rms, 0.05);
+    EXPECT_LT(rms, 0.3);
+    EXPECT_LT(std::sqrt(near2 / n), 0.3 * rms);
+    EXPECT_LT(std::abs(far) / std::sqrt(farA2 * farB2), 0.2);
+    c.knotRingWobble = 0;
+    EXPECT_EQ(knotRingWobble(inside, {0.01, 0.01, 2}, c), 0);
+
+    GrainParams g;
+    g.colour.knotRingWobble = 0.5;
+    g.colour.knotRingWobbleScale = 0.006;
+    const GrainParams back = parseGrain(grainToJson(g), "g.json");
+    EXPECT_EQ(back.colour.knotRingWobble, 0.5);
+    EXPECT_EQ(back.colour.knotRingWobbleScale, 0.006);
+    nlohmann::json bad = grainToJson(g);
+    bad["colour"]["knots"]["ring_wobble_scale"] = 0;
     EXPECT_THROW(parseGrain(bad, "g.json"), InputError);
 }
 
