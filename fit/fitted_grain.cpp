@@ -40,10 +40,8 @@ nlohmann::json fittedGrain(const std::string& base, const Sample& sample,
     colour["heartwood"] = {{"enabled", false}};
     // The base's halo round the knots (the hinoki preset's) is the fit's to find (step 10):
     // until then it would widen the bakes' dark knot wood, which sizes and aims the branches.
-    // Its knots' ring wobble is a look the fit neither measures nor needs, and its bakes' knots
-    // are found and aimed by their rings, which wobbling rings blur (the synthetic knot cube's
-    // F knot read 18 mm off at 0.5 years): the fit bakes circles, and fitSample puts the
-    // base's wobble back into the grain it writes.
+    // Its knots' ring wobble: the finder reads wobbling faint knot rings off (the synthetic
+    // knot cube's F knot 18 mm at 0.5 years), so the fit bakes circles (given back at its end).
     if (colour.contains("knots") && colour["knots"].is_object()) {
         colour["knots"]["halo_tint"] = colourJson({1, 1, 1});
         colour["knots"].erase("ring_wobble");

@@ -18,6 +18,7 @@ constexpr double kHaloNoiseScale = 1.5, kHaloPatchiness = 0.5;
 constexpr uint64_t kHaloSalt = 0x4a10;
 /// The knot share under which the halo fades out with the branch's term.
 constexpr double kHaloShareFade = 0.1;
+/// The knots' ring wobble's own noise, apart from the halo's.
 constexpr uint64_t kWobbleSalt = 0x4a11;
 
 /// The knot tint's weight: how far P is inside the knot by the branch's share.

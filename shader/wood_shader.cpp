@@ -85,8 +85,11 @@ Vec3 WoodShader::applyAnatomy(const GrowthSample& s, const Vec3& point, const Su
     o.albedo = alongColourLine(o.albedo, a, colourLine_);
     Vec3 relief = a.reliefGradient;
     if (inKnot > 0) {
-        AnatomySample k = woodAnatomy(anatomy, {s.knotOffset, s.knotAxisDirection}, s.T, point,
-                                      o.gradientT, f.dpdx, f.dpdy, f.diameter, inKnot);
+        // (At the time the colour reads the rings at: the knot's ring tone and bands wobble
+        // with its late wood.)
+        AnatomySample k =
+            woodAnatomy(anatomy, {s.knotOffset, s.knotAxisDirection}, colourTime(s, point, colour),
+                        point, o.gradientT, f.dpdx, f.dpdy, f.diameter, inKnot);
         o.albedo = alongColourLine(o.albedo, k, colourLine_);
         relief = relief + k.reliefGradient;
     }

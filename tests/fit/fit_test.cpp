@@ -327,6 +327,9 @@ WoodFit expectBakedKnotFitted(const std::string& name, double truthDarkening,
     writeJson(base, hinokiWith(baseDarkening, true));
     // The knot's flanks are the junction's (eq. 5): from the grain it was baked with.
     WoodFit fit = fitSample(sample, hinokiOptions(base));
+    // The preset's knot ring wobble, left out of the fit's bakes, is in the grain it writes.
+    EXPECT_EQ(fit.grain["colour"]["knots"].value("ring_wobble", 0.0),
+              hinokiWith(0)["colour"]["knots"].value("ring_wobble", -1.0));
     EXPECT_EQ(fit.branches.size(), 1u);
     if (fit.branches.size() != 1) return fit;
     EXPECT_EQ(fit.branches[0].faces.size(), 2u) << "one branch through both faces";

@@ -277,5 +277,56 @@ TEST(WoodSurface, LatewoodSharesMoveTheLateWoodBand) {
     }
 }
 
+// A knot's ring wobble moves the late wood the shader draws inside the knot, in both of its
+// paths (surface and plain colour), and nowhere outside it; T itself is left as it was.
+TEST(WoodSurface, KnotRingWobbleMovesTheKnotsLateWoodOnly) {
+    ChainProperties props;
+    props.gamma = 0.3;
+    Skeleton sk = test::trunkWithBranch(2, {1, 0, 0}, 1.0, props);
+    SkeletonIndex index(sk);
+    GrainParams round, wobbly;
+    round.radialSpeed = wobbly.radialSpeed = 0.004;
+    wobbly.colour.knotRingWobble = 0.5;
+    GrowthField roundField(index, round), wobblyField(index, wobbly);
+    WoodShader roundShader(roundField), wobblyShader(wobblyField);
+    // Across the branch's section 5 cm out (in the knot), and clear wood far above it.
+    std::vector<Vec3> knot, clear;
+    for (int i = 0; i < 40; ++i) {
+        const double a = 0.3 * i, r = 0.0003 + 0.00012 * i;
+        knot.push_back({0.05, r * std::cos(a), 2 + r * std::sin(a)});
+        clear.push_back({0.05 + 0.001 * i, 0.0, 3.5});
+    }
+    auto surface = [](const WoodShader& shader, const std::vector<Vec3>& p) {
+        std::vector<WoodSurfaceSample> out(p.size());
+        WoodScratch scratch;
+        shader.evaluateSurface(p, {}, out, scratch);
+        return out;
+    };
+    auto plain = [](const WoodShader& shader, const std::vector<Vec3>& p) {
+        std::vector<WoodSample> out(p.size());
+        GrowthScratch scratch;
+        std::vector<GrowthSample> samples;
+        shader.evaluate(p, out, scratch, samples);
+        return out;
+    };
+    const auto roundKnot = surface(roundShader, knot), wobblyKnot = surface(wobblyShader, knot);
+    const auto roundPlain = plain(roundShader, knot), wobblyPlain = plain(wobblyShader, knot);
+    int moved = 0, movedPlain = 0;
+    for (size_t i = 0; i < knot.size(); ++i) {
+        ASSERT_GT(roundKnot[i].knot, 0.75) << i;  // inside the knot
+        EXPECT_EQ(wobblyKnot[i].T, roundKnot[i].T) << i;
+        moved += std::abs(wobblyKnot[i].lateWood - roundKnot[i].lateWood) > 0.01;
+        movedPlain += wobblyPlain[i].albedo != roundPlain[i].albedo;
+    }
+    EXPECT_GT(moved, 20);
+    EXPECT_GT(movedPlain, 20);
+    const auto roundClear = surface(roundShader, clear), wobblyClear = surface(wobblyShader, clear);
+    for (size_t i = 0; i < clear.size(); ++i) {
+        ASSERT_EQ(roundClear[i].knot, 0) << i;
+        EXPECT_EQ(wobblyClear[i].lateWood, roundClear[i].lateWood) << i;
+        EXPECT_EQ(wobblyClear[i].albedo, roundClear[i].albedo) << i;
+    }
+}
+
 }  // namespace
 }  // namespace nenrin

@@ -68,7 +68,8 @@ typedef struct nenrin_shading_result {
      * branch's axis inside a knot), bent into the ring surface so that it flows around knots.
      * Its sign carries no meaning. */
     float fibre[3];
-    /* Growth time, years: when the bark reached this point. Rings are iso-surfaces of T. */
+    /* Growth time, years: when the bark reached this point. Rings are iso-surfaces of T
+       (inside knots with a ring wobble, late_wood follows the drawn rings, T does not). */
     float T;
     /* Share of branch paths in the junction blend, 0..1: 0 in clear wood, 1 inside a knot. */
     float knot;
