@@ -58,7 +58,7 @@ void WoodShader::evaluate(std::span<const Vec3> treePoints, std::span<WoodSample
 }
 
 Vec3 WoodShader::applyAnatomy(const GrowthSample& s, const Vec3& point, const SurfaceFootprint& f,
-                              double endGrain, WoodSurfaceSample& o) const {
+                              double endGrain, double ringTime, WoodSurfaceSample& o) const {
     // Fibres, pores and rays about the trunk's axis, and inside a knot about its branch's:
     // there the rays radiate from the knot's pith and the fibres follow it.
     // On end grain the cells' own texture (fibres, speckle) and the streaks, ring tones and
@@ -87,9 +87,8 @@ Vec3 WoodShader::applyAnatomy(const GrowthSample& s, const Vec3& point, const Su
     if (inKnot > 0) {
         // (At the time the colour reads the rings at: the knot's ring tone and bands wobble
         // with its late wood.)
-        AnatomySample k =
-            woodAnatomy(anatomy, {s.knotOffset, s.knotAxisDirection}, colourTime(s, point, colour),
-                        point, o.gradientT, f.dpdx, f.dpdy, f.diameter, inKnot);
+        AnatomySample k = woodAnatomy(anatomy, {s.knotOffset, s.knotAxisDirection}, ringTime, point,
+                                      o.gradientT, f.dpdx, f.dpdy, f.diameter, inKnot);
         o.albedo = alongColourLine(o.albedo, k, colourLine_);
         relief = relief + k.reliefGradient;
     }
@@ -143,7 +142,8 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
         // The year's own late-wood share: the profile is read at the warped time (inside a
         // knot, wobbled: grain/knot_look.h).
         double warp = 1;
-        const double profileT = timing.profileTime(colourTime(s, treePoints[i], colour), &warp);
+        const double ringTime = colourTime(s, treePoints[i], colour);
+        const double profileT = timing.profileTime(ringTime, &warp);
         o.lateWood = rings_.filtered(profileT, width * warp);
 
         bool outside = felled > 0 && s.T > felled;
@@ -170,9 +170,9 @@ void WoodShader::evaluateSurface(std::span<const Vec3> treePoints,
                 ? endGrainWeight(std::abs(dot(normalize(footprints[i].normal), o.fibre)))
                 : 0.0;
         if (field_->params().anatomy.enabled && !outside)
-            anatomyRelief =
-                applyAnatomy(s, treePoints[i],
-                             footprints.empty() ? SurfaceFootprint{} : footprints[i], endGrain, o);
+            anatomyRelief = applyAnatomy(s, treePoints[i],
+                                         footprints.empty() ? SurfaceFootprint{} : footprints[i],
+                                         endGrain, ringTime, o);
         if (!footprints.empty() && !outside && finish_.sawMarks > 0) {
             const SurfaceFootprint& f = footprints[i];
             const SawMarkSample m = sawMarks(finish_, treePoints[i], f.dpdx, f.dpdy, endGrain);

@@ -86,9 +86,10 @@ private:
     /// Multiplies the albedo by the anatomy's texture; returns its relief gradient. `endGrain`
     /// (0-1, endGrainWeight) strengthens the cells' own texture by the grain's
     /// `end_grain.texture` and its streaks, ring tones and vessels by `end_grain.contrast`, and
-    /// rounds the cells (their radial files are a side-grain look).
+    /// rounds the cells (their radial files are a side-grain look). `ringTime`: the time the
+    /// colour reads the rings at (colourTime), which a knot's anatomy follows.
     Vec3 applyAnatomy(const GrowthSample& s, const Vec3& point, const SurfaceFootprint& f,
-                      double endGrain, WoodSurfaceSample& o) const;
+                      double endGrain, double ringTime, WoodSurfaceSample& o) const;
 
     const GrowthField* field_;
     Finish finish_;
